@@ -1,0 +1,38 @@
+include(GoogleTest)
+
+# Warnings for the project's own targets (not for idlc's generated C).
+function(mpgc_target_defaults target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wno-missing-field-initializers)
+endfunction()
+
+# Adds every immediate subfolder of `dir` that has a CMakeLists.txt, so a new component or test
+# folder needs no edit elsewhere.
+function(mpgc_add_subdirectories dir)
+  file(GLOB children RELATIVE ${CMAKE_CURRENT_SOURCE_DIR}/${dir} ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*)
+  list(SORT children)
+  foreach(child ${children})
+    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/${child}/CMakeLists.txt)
+      add_subdirectory(${dir}/${child})
+    endif()
+  endforeach()
+endfunction()
+
+# mpgc_add_gtest(NAME name SOURCES ... LIBS ... LABELS unit|integration|scenario <component> [TIMEOUT s])
+# Every test runs with the loopback Cyclone configuration and finds the shared data through
+# MPGC_SHARED_DATA and the project's executables through MPGC_BIN_DIR.
+function(mpgc_add_gtest)
+  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} mpgc_testing GTest::gtest GTest::gtest_main)
+  mpgc_target_defaults(${T_NAME})
+  gtest_discover_tests(${T_NAME}
+    DISCOVERY_MODE PRE_TEST
+    DISCOVERY_TIMEOUT 60
+    PROPERTIES
+      LABELS "${T_LABELS}"
+      TIMEOUT ${T_TIMEOUT}
+      ENVIRONMENT "CYCLONEDDS_URI=file://${PROJECT_SOURCE_DIR}/deploy/cyclonedds/loopback.xml;MPGC_SHARED_DATA=${PROJECT_SOURCE_DIR}/../shared/data;MPGC_SOURCE_DIR=${PROJECT_SOURCE_DIR};MPGC_BIN_DIR=${CMAKE_BINARY_DIR}/bin;ASAN_OPTIONS=detect_leaks=1:abort_on_error=0;UBSAN_OPTIONS=print_stacktrace=1")
+endfunction()

@@ -1,0 +1,36 @@
+// The one way components read time: the wall clock, or the simulator's `clock` topic.
+#pragma once
+
+#include <cstdint>
+
+namespace mpgc::rt {
+
+class Clock {
+ public:
+  virtual ~Clock() = default;
+  virtual int64_t now_ns() const = 0;  // [ns] wall: since the Unix epoch; simulated: since run start
+  virtual bool simulated() const = 0;
+  double now_s() const { return static_cast<double>(now_ns()) * 1e-9; }
+};
+
+class WallClock final : public Clock {
+ public:
+  int64_t now_ns() const override;
+  bool simulated() const override { return false; }
+};
+
+// Simulated time, advanced by the executor from `clock` samples; never goes backwards.
+class SimClock final : public Clock {
+ public:
+  int64_t now_ns() const override { return now_ns_; }
+  bool simulated() const override { return true; }
+  bool started() const { return started_; }
+  // Returns false (and keeps the time) when t_ns is earlier than the current time.
+  bool advance_to(int64_t t_ns);
+
+ private:
+  int64_t now_ns_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace mpgc::rt

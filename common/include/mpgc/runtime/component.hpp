@@ -1,0 +1,186 @@
+// The component runtime every mpgc process uses: parameters, logger, DDS participant, a
+// waitset-driven executor with subscriptions and periodic timers on the component's clock,
+// health samples, lockstep acknowledgement, and clean shutdown on SIGINT/SIGTERM.
+//
+//   int main(int argc, char** argv) {
+//     MyParams p;
+//     mpgc::rt::ParamSet ps;
+//     declare(ps, p);
+//     return mpgc::rt::run_component("my_component", argc, argv, ps, [&](mpgc::rt::Component& c) {
+//       auto& out = c.publisher<msg::Path>(topics::kPath, dds::QosProfile::latched());
+//       c.subscribe<msg::NavState>(topics::kOwnState, dds::QosProfile::state(), [&](const msg::NavState& s) {...});
+//       c.every(1.0, [&] { out.write(...); });
+//     });
+//   }
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <spdlog/spdlog.h>
+
+#include "mpgc/dds/dds.hpp"
+#include "mpgc/msg/core.hpp"
+#include "mpgc/runtime/clock.hpp"
+#include "mpgc/runtime/params.hpp"
+
+namespace mpgc::rt {
+
+// Runtime parameters every component has (declared by run_component under these names).
+struct RuntimeParams {
+  int domain = 0;                 // dds.domain
+  std::string clock = "wall";     // clock.source: wall | sim
+  bool lockstep_ack = true;       // clock.lockstep_ack: acknowledge lockstep steps
+  double health_period = 1.0;     // [s] health.period (wall time)
+  double lease = 1.0;             // [s] dds.lease: liveliness lease of every writer
+  std::string log_level = "info"; // log.level
+  static void declare(ParamSet& ps, RuntimeParams* p);
+};
+
+class Component {
+ public:
+  Component(std::string name, const RuntimeParams& rp, std::shared_ptr<spdlog::logger> log);
+  ~Component();
+  Component(const Component&) = delete;
+  Component& operator=(const Component&) = delete;
+
+  const std::string& name() const { return name_; }
+  spdlog::logger& log() { return *log_; }
+  const Clock& clock() const { return *clock_; }
+  int64_t now_ns() const { return clock_->now_ns(); }
+  dds::Participant& participant() { return participant_; }
+
+  // A header stamped with the component's clock and name.
+  msg::Header header();
+
+  template <class T>
+  dds::Writer<T>& publisher(const std::string& topic, dds::QosProfile qos) {
+    qos.lease_s = rp_.lease;
+    auto w = std::make_unique<dds::Writer<T>>(participant_, topic_for<T>(topic), qos);
+    auto& ref = *w;
+    owned_.push_back(std::shared_ptr<void>(std::move(w)));
+    return ref;
+  }
+
+  // Calls `on_sample` for every valid sample. If `validate` returns a non-empty reason, the sample
+  // is rejected: logged, counted in health ("rejected.<topic>"), and not delivered.
+  template <class T>
+  dds::Reader<T>& subscribe(const std::string& topic, dds::QosProfile qos, std::function<void(const T&)> on_sample,
+                            std::function<std::string(const T&)> validate = {}) {
+    qos.lease_s = rp_.lease;
+    auto sub = std::make_unique<Sub<T>>(participant_, topic_for<T>(topic), qos);
+    sub->on_sample = std::move(on_sample);
+    sub->validate = std::move(validate);
+    auto& reader = sub->reader;
+    attach(reader.handle(), std::move(sub));
+    return reader;
+  }
+
+  // Calls `cb(alive_writers)` whenever the liveliness of the writers on `reader` changes.
+  template <class T>
+  void on_liveliness(dds::Reader<T>& reader, std::function<void(int32_t)> cb) {
+    watch_liveliness(reader.handle(), std::move(cb));
+  }
+
+  // A periodic timer on the component's clock (simulated time when clock.source = sim).
+  // The first call happens at the first tick of the clock.
+  void every(double period_s, std::function<void()> cb);
+
+  // Health: count a rejected input (logged at warn, rate-limited per reason) or any other counter.
+  void reject(const std::string& reason, const std::string& detail);
+  void count(const std::string& counter, uint64_t n = 1);
+  uint64_t counter(const std::string& name) const;
+  void set_health(msg::HealthState state, const std::string& detail);
+
+  // Runs until SIGINT/SIGTERM or stop(). Returns the exit code.
+  int spin();
+  void stop(int exit_code = 0);
+
+ private:
+  struct SubBase {
+    virtual ~SubBase() = default;
+    virtual void process(Component& c) = 0;
+  };
+  template <class T>
+  struct Sub : SubBase {
+    Sub(dds::Participant& p, const dds::Topic<T>& t, const dds::QosProfile& q) : reader(p, t, q) {}
+    dds::Reader<T> reader;
+    std::function<void(const T&)> on_sample;
+    std::function<std::string(const T&)> validate;
+    void process(Component& c) override {
+      for (auto& s : reader.take()) {
+        if (validate) {
+          const std::string why = validate(s.value);
+          if (!why.empty()) {
+            c.reject(reader.topic(), why);
+            continue;
+          }
+        }
+        if (on_sample) on_sample(s.value);
+      }
+    }
+  };
+  struct Timer {
+    int64_t period_ns;
+    int64_t next_ns;
+    bool started;
+    std::function<void()> cb;
+  };
+  struct Liveliness {
+    dds_entity_t reader;
+    int64_t alive;
+    std::function<void(int32_t)> cb;
+  };
+
+  template <class T>
+  const dds::Topic<T>& topic_for(const std::string& name) {
+    auto it = topics_.find(name);
+    if (it == topics_.end()) it = topics_.emplace(name, std::make_shared<dds::Topic<T>>(participant_, name)).first;
+    return *static_cast<const dds::Topic<T>*>(it->second.get());
+  }
+  void attach(dds_entity_t reader, std::unique_ptr<SubBase> sub);
+  void watch_liveliness(dds_entity_t reader, std::function<void(int32_t)> cb);
+  void on_clock(const msg::Clock& c);
+  void fire_due_timers();
+  void publish_health();
+
+  std::string name_;
+  RuntimeParams rp_;
+  std::shared_ptr<spdlog::logger> log_;
+  std::unique_ptr<Clock> clock_;
+  SimClock* sim_clock_ = nullptr;  // == clock_ when simulated
+  WallClock wall_;                 // health and log rate limits run on wall time
+  dds::Participant participant_;
+  dds::Entity waitset_;
+  dds::Entity guard_;
+  std::map<std::string, std::shared_ptr<void>> topics_;
+  std::vector<std::shared_ptr<void>> owned_;
+  std::vector<std::unique_ptr<SubBase>> subs_;
+  std::vector<Timer> timers_;
+  std::vector<Liveliness> liveliness_;
+  std::map<std::string, uint64_t> counters_;
+  std::map<std::string, int64_t> last_reject_log_ns_;
+  uint64_t rejected_ = 0;
+  msg::HealthState health_state_ = msg::HealthState::HEALTH_STARTING;
+  std::string health_detail_;
+  int64_t next_health_ns_ = 0;
+  uint32_t seq_ = 0;
+  dds::Writer<msg::ComponentHealth>* health_writer_ = nullptr;
+  dds::Writer<msg::StepAck>* ack_writer_ = nullptr;
+  std::atomic<bool> stop_{false};
+  int exit_code_ = 0;
+};
+
+// Parses the command line (--params FILE, --set name=value, --log-level, --domain, --help),
+// validates every parameter, builds the component, calls `setup`, and spins. --help prints the
+// parameters and returns 0; bad parameters print one error per parameter and return 2; an
+// exception in setup or a callback is logged and returns 1.
+int run_component(const std::string& name, int argc, char** argv, ParamSet& params,
+                  const std::function<void(Component&)>& setup);
+
+}  // namespace mpgc::rt

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every Debian package mpgc builds, tests and runs with, by name (Debian 12 bookworm).
+# Usage: deploy/install-deps.sh [--check]   (--check: list what is missing, install nothing)
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config python3 git
+  # middleware and libraries (CMakeLists.txt find_package)
+  cyclonedds-dev cyclonedds-tools
+  libeigen3-dev libfcl-dev libspdlog-dev libyaml-cpp-dev libcli11-dev libnanoflann-dev
+  libgeographiclib-dev libgdal-dev libompl-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev
+  # multi-host tests (network namespaces)
+  iproute2
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ "${1:-}" = "--check" ]; then
+  printf '%s\n' "${missing[@]}"
+  exit 0
+fi
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps: missing packages: ${missing[*]}" >&2
+  echo "run as root:  apt-get update && apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"

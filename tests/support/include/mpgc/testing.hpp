@@ -1,0 +1,18 @@
+// Helpers for tests: unique DDS domains for concurrently running tests, paths to data and binaries.
+#pragma once
+
+#include <string>
+
+namespace mpgc::testing {
+
+// A DDS domain id (1..200) no other running test process holds: an flock on
+// /tmp/mpgc-test-domain-<id>.lock, held until the process exits (notes pitfall 7).
+int unique_domain();
+
+// $MPGC_SHARED_DATA (../shared/data beside the repository) joined with `rel`.
+std::string shared_data(const std::string& rel);
+// $MPGC_BIN_DIR: the build's bin/ folder with every executable.
+std::string bin_dir();
+std::string source_dir();
+
+}  // namespace mpgc::testing
