@@ -1,0 +1,157 @@
+#include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <nanoflann.hpp>
+
+#include "segment_tree.hpp"
+
+namespace mpgc::obstacle_manager {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct PointCloud {
+  const std::vector<PointNE>* pts;
+  size_t kdtree_get_point_count() const { return pts->size(); }
+  double kdtree_get_pt(size_t i, size_t dim) const { return dim == 0 ? (*pts)[i].x : (*pts)[i].y; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 2,
+                                                   size_t>;
+
+// nanoflann's RadiusResultSet keeps d < r; the map promises d <= r, so accept ties explicitly.
+struct InclusiveRadius {
+  double r2;
+  std::vector<std::pair<size_t, double>>& out;
+  size_t size() const { return out.size(); }
+  bool full() const { return true; }
+  bool addPoint(double d2, size_t i) {
+    if (d2 <= r2) out.emplace_back(i, d2);
+    return true;
+  }
+  double worstDist() const { return std::nextafter(r2, kInf); }
+};
+
+void check_query(PointNE p, const char* what) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    throw std::invalid_argument(std::string(what) + ": query point is not finite (" + std::to_string(p.x) + ", " +
+                                std::to_string(p.y) + ")");
+}
+
+void check_point(PointNE p, const std::string& what) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    throw std::invalid_argument(what + " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")");
+}
+}  // namespace
+
+struct FixedObstacleMap::Impl {
+  std::vector<PointNE> points;
+  std::vector<Polygon> polygons;
+  PointCloud cloud{&points};
+  KdTree kd;  // over `points` (leaf size 10)
+  detail::SegmentTree edges_and_points;  // min distance: polygon edges + points (zero length)
+  detail::SegmentTree edges;             // ray crossings: polygon edges only
+  BoxNE box{0, 0, 0, 0};
+
+  Impl(std::vector<PointNE> p, std::vector<Polygon> g)
+      : points(std::move(p)), polygons(std::move(g)), cloud{&points}, kd(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+};
+
+FixedObstacleMap::FixedObstacleMap() : FixedObstacleMap({}, {}) {}
+
+FixedObstacleMap::FixedObstacleMap(std::vector<PointNE> points, std::vector<Polygon> polygons) {
+  for (size_t i = 0; i < points.size(); ++i) check_point(points[i], "obstacle point " + std::to_string(i));
+  for (size_t k = 0; k < polygons.size(); ++k) {
+    const auto& r = polygons[k].ring;
+    const std::string name = "polygon " + std::to_string(k) + " (feature " + std::to_string(polygons[k].feature_id) + ")";
+    if (r.size() < 3) throw std::invalid_argument(name + " has " + std::to_string(r.size()) + " points, needs >= 3");
+    for (size_t i = 0; i < r.size(); ++i) check_point(r[i], name + " vertex " + std::to_string(i));
+  }
+  if (points.size() >= std::numeric_limits<uint32_t>::max() / 2)
+    throw std::invalid_argument("too many obstacle points: " + std::to_string(points.size()));
+
+  std::vector<detail::Segment> all, edges;
+  for (const auto& g : polygons)
+    for (size_t i = 0; i < g.ring.size(); ++i) edges.push_back({g.ring[i], g.ring[(i + 1) % g.ring.size()], g.feature_id});
+  all = edges;
+  all.reserve(edges.size() + points.size());
+  for (const auto& p : points) all.push_back({p, p, detail::kNoGroup});
+
+  impl_ = std::make_unique<Impl>(std::move(points), std::move(polygons));
+  impl_->edges = detail::SegmentTree(std::move(edges));
+  impl_->edges_and_points = detail::SegmentTree(std::move(all));
+  impl_->box = impl_->edges_and_points.bounds();
+}
+
+FixedObstacleMap::~FixedObstacleMap() = default;
+FixedObstacleMap::FixedObstacleMap(FixedObstacleMap&&) noexcept = default;
+FixedObstacleMap& FixedObstacleMap::operator=(FixedObstacleMap&&) noexcept = default;
+
+const std::vector<PointNE>& FixedObstacleMap::points() const { return impl_->points; }
+const std::vector<Polygon>& FixedObstacleMap::polygons() const { return impl_->polygons; }
+BoxNE FixedObstacleMap::bounds() const { return impl_->box; }
+
+size_t FixedObstacleMap::nearest_index(PointNE p) const {
+  check_query(p, "nearest_index");
+  if (impl_->points.empty()) return std::numeric_limits<size_t>::max();
+  size_t idx = 0;
+  double d2 = 0;
+  nanoflann::KNNResultSet<double, size_t> rs(1);
+  rs.init(&idx, &d2);
+  const double q[2] = {p.x, p.y};
+  impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
+  return idx;
+}
+
+double FixedObstacleMap::nearest_distance(PointNE p) const {
+  check_query(p, "nearest_distance");
+  if (impl_->points.empty()) return kInf;
+  size_t idx = 0;
+  double d2 = 0;
+  nanoflann::KNNResultSet<double, size_t> rs(1);
+  rs.init(&idx, &d2);
+  const double q[2] = {p.x, p.y};
+  impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
+  return std::sqrt(d2);
+}
+
+std::vector<size_t> FixedObstacleMap::radius(PointNE p, double r) const {
+  check_query(p, "radius");
+  if (!(r >= 0.0) || !std::isfinite(r))
+    throw std::invalid_argument("radius: r = " + std::to_string(r) + " must be finite and >= 0");
+  std::vector<size_t> out;
+  if (impl_->points.empty()) return out;
+  std::vector<std::pair<size_t, double>> found;
+  InclusiveRadius rs{r * r, found};
+  const double q[2] = {p.x, p.y};
+  impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
+  std::sort(found.begin(), found.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second || (a.second == b.second && a.first < b.first); });
+  out.reserve(found.size());
+  for (const auto& f : found) out.push_back(f.first);
+  return out;
+}
+
+bool FixedObstacleMap::inside_land(PointNE p) const {
+  check_query(p, "inside_land");
+  return impl_->edges.odd_crossings(p);
+}
+
+double FixedObstacleMap::clearance(PointNE p) const { return segment_clearance(p, p); }
+
+double FixedObstacleMap::segment_clearance(PointNE a, PointNE b) const {
+  check_query(a, "segment_clearance");
+  check_query(b, "segment_clearance");
+  // Without an edge crossing, the whole segment is on the side of `a`; so one inside test suffices.
+  if (inside_land(a)) return 0.0;
+  return impl_->edges_and_points.min_distance(a, b);
+}
+
+}  // namespace mpgc::obstacle_manager

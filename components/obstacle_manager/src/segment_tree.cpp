@@ -1,0 +1,203 @@
+#include "segment_tree.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace mpgc::obstacle_manager {
+
+namespace {
+double cross(PointNE o, PointNE a, PointNE b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
+int sign(double v) { return (v > 0) - (v < 0); }
+bool on_segment(PointNE p, PointNE a, PointNE b) {  // p collinear with [a, b]: within its box?
+  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+         p.y <= std::max(a.y, b.y);
+}
+}  // namespace
+
+double point_segment_distance(PointNE p, PointNE a, PointNE b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  double t = 0.0;
+  if (len2 > 0.0) t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0);
+  const double ex = a.x + t * dx - p.x, ey = a.y + t * dy - p.y;
+  return std::sqrt(ex * ex + ey * ey);
+}
+
+double segment_distance(PointNE a, PointNE b, PointNE c, PointNE d) {
+  // Intersection by orientation signs (including touching and collinear overlap) -> 0.
+  const int o1 = sign(cross(a, b, c)), o2 = sign(cross(a, b, d));
+  const int o3 = sign(cross(c, d, a)), o4 = sign(cross(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return 0.0;
+  if ((o1 == 0 && on_segment(c, a, b)) || (o2 == 0 && on_segment(d, a, b)) || (o3 == 0 && on_segment(a, c, d)) ||
+      (o4 == 0 && on_segment(b, c, d)))
+    return 0.0;
+  // Disjoint segments: the minimum is attained at an endpoint of one of them.
+  return std::min(std::min(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
+                  std::min(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
+}
+
+namespace detail {
+
+namespace {
+double point_box_distance(PointNE p, const BoxNE& b) {
+  const double dx = std::max({b.min_x - p.x, 0.0, p.x - b.max_x});
+  const double dy = std::max({b.min_y - p.y, 0.0, p.y - b.max_y});
+  return std::sqrt(dx * dx + dy * dy);
+}
+// Liang-Barsky: does [a, b] meet the closed box?
+bool segment_hits_box(PointNE a, PointNE b, const BoxNE& box) {
+  double t0 = 0.0, t1 = 1.0;
+  const double d[2] = {b.x - a.x, b.y - a.y};
+  const double lo[2] = {box.min_x - a.x, box.min_y - a.y};
+  const double hi[2] = {box.max_x - a.x, box.max_y - a.y};
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0) {
+      if (lo[k] > 0.0 || hi[k] < 0.0) return false;
+    } else {
+      double ta = lo[k] / d[k], tb = hi[k] / d[k];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+      if (t0 > t1) return false;
+    }
+  }
+  return true;
+}
+constexpr uint32_t kLeafSize = 4;
+}  // namespace
+
+double segment_box_distance(PointNE a, PointNE b, const BoxNE& box) {
+  if (segment_hits_box(a, b, box)) return 0.0;
+  // Two disjoint convex sets in the plane: the minimum is between a vertex of one and the other.
+  double d = std::min(point_box_distance(a, box), point_box_distance(b, box));
+  d = std::min(d, point_segment_distance({box.min_x, box.min_y}, a, b));
+  d = std::min(d, point_segment_distance({box.min_x, box.max_y}, a, b));
+  d = std::min(d, point_segment_distance({box.max_x, box.min_y}, a, b));
+  d = std::min(d, point_segment_distance({box.max_x, box.max_y}, a, b));
+  return d;
+}
+
+SegmentTree::SegmentTree(std::vector<Segment> segs) : segs_(std::move(segs)) {
+  if (segs_.empty()) return;
+  nodes_.reserve(2 * (segs_.size() / kLeafSize + 1));
+  nodes_.push_back({});
+  build(0, static_cast<uint32_t>(segs_.size()), nodes_);
+}
+
+uint32_t SegmentTree::build(uint32_t first, uint32_t count, std::vector<Node>& out) {
+  // Iterative over an explicit stack of (node, first, count) so deep inputs cannot overflow.
+  struct Job {
+    uint32_t node, first, count;
+  };
+  std::vector<Job> jobs{{0, first, count}};
+  while (!jobs.empty()) {
+    const Job j = jobs.back();
+    jobs.pop_back();
+    BoxNE box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+              -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    BoxNE cbox = box;  // box of the segment centres, to choose the split axis
+    for (uint32_t i = j.first; i < j.first + j.count; ++i) {
+      const Segment& s = segs_[i];
+      box.min_x = std::min({box.min_x, s.a.x, s.b.x});
+      box.max_x = std::max({box.max_x, s.a.x, s.b.x});
+      box.min_y = std::min({box.min_y, s.a.y, s.b.y});
+      box.max_y = std::max({box.max_y, s.a.y, s.b.y});
+      const double cx = 0.5 * (s.a.x + s.b.x), cy = 0.5 * (s.a.y + s.b.y);
+      cbox.min_x = std::min(cbox.min_x, cx);
+      cbox.max_x = std::max(cbox.max_x, cx);
+      cbox.min_y = std::min(cbox.min_y, cy);
+      cbox.max_y = std::max(cbox.max_y, cy);
+    }
+    out[j.node].box = box;
+    if (j.count <= kLeafSize) {
+      out[j.node].first = j.first;
+      out[j.node].count = j.count;
+      continue;
+    }
+    const bool split_x = (cbox.max_x - cbox.min_x) >= (cbox.max_y - cbox.min_y);
+    const uint32_t half = j.count / 2;
+    auto key = [split_x](const Segment& s) { return split_x ? s.a.x + s.b.x : s.a.y + s.b.y; };
+    std::nth_element(segs_.begin() + j.first, segs_.begin() + j.first + half, segs_.begin() + j.first + j.count,
+                     [&](const Segment& l, const Segment& r) { return key(l) < key(r); });
+    const auto left = static_cast<uint32_t>(out.size());
+    out.push_back({});
+    out.push_back({});
+    out[j.node].first = left;
+    out[j.node].count = 0;
+    jobs.push_back({left, j.first, half});
+    jobs.push_back({left + 1, j.first + half, j.count - half});
+  }
+  return 0;
+}
+
+double SegmentTree::min_distance(PointNE q0, PointNE q1) const {
+  double best = std::numeric_limits<double>::infinity();
+  if (nodes_.empty()) return best;
+  struct Item {
+    uint32_t node;
+    double lb;
+  };
+  Item stack[128];  // depth <= log2(4e9 / kLeafSize) << 64; two pushes per level
+  int top = 0;
+  stack[top++] = {0, segment_box_distance(q0, q1, nodes_[0].box)};
+  while (top > 0) {
+    const Item it = stack[--top];
+    if (it.lb >= best) continue;
+    const Node& n = nodes_[it.node];
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i)
+        best = std::min(best, segment_distance(q0, q1, segs_[i].a, segs_[i].b));
+      if (best == 0.0) break;
+      continue;
+    }
+    const double l = segment_box_distance(q0, q1, nodes_[n.first].box);
+    const double r = segment_box_distance(q0, q1, nodes_[n.first + 1].box);
+    // Push the farther child first so the nearer one is searched first and tightens `best`.
+    if (l <= r) {
+      if (r < best) stack[top++] = {n.first + 1, r};
+      if (l < best) stack[top++] = {n.first, l};
+    } else {
+      if (l < best) stack[top++] = {n.first, l};
+      if (r < best) stack[top++] = {n.first + 1, r};
+    }
+  }
+  return best;
+}
+
+bool SegmentTree::odd_crossings(PointNE p) const {
+  if (nodes_.empty()) return false;
+  std::vector<uint32_t> groups;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (p.x < n.box.min_x || p.x > n.box.max_x || p.y > n.box.max_y) continue;
+    if (n.count == 0) {
+      stack[top++] = n.first;
+      stack[top++] = n.first + 1;
+      continue;
+    }
+    for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const Segment& s = segs_[i];
+      // Half-open rule on x so a ray through a vertex counts exactly one of its two edges.
+      if ((s.a.x > p.x) == (s.b.x > p.x)) continue;
+      const double y = s.a.y + (p.x - s.a.x) * (s.b.y - s.a.y) / (s.b.x - s.a.x);
+      if (y > p.y) groups.push_back(s.group);
+    }
+  }
+  std::sort(groups.begin(), groups.end());
+  for (size_t i = 0; i < groups.size();) {
+    size_t j = i;
+    while (j < groups.size() && groups[j] == groups[i]) ++j;
+    if ((j - i) % 2 == 1) return true;
+    i = j;
+  }
+  return false;
+}
+
+BoxNE SegmentTree::bounds() const { return nodes_.empty() ? BoxNE{0, 0, 0, 0} : nodes_[0].box; }
+
+}  // namespace detail
+}  // namespace mpgc::obstacle_manager

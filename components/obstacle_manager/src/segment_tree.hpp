@@ -1,0 +1,45 @@
+// A static 2-D AABB tree over segments (polygon edges; points as zero-length segments) for exact
+// minimum-distance and ray-crossing queries. Private to the library.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
+
+namespace mpgc::obstacle_manager::detail {
+
+struct Segment {
+  PointNE a, b;
+  uint32_t group;  // even-odd group (polygon feature) or kNoGroup for points
+};
+inline constexpr uint32_t kNoGroup = std::numeric_limits<uint32_t>::max();
+
+// Exact distance from the segment [a, b] to the box (0 when they intersect).
+double segment_box_distance(PointNE a, PointNE b, const BoxNE& box);
+
+class SegmentTree {
+ public:
+  SegmentTree() = default;
+  explicit SegmentTree(std::vector<Segment> segs);
+  size_t size() const { return segs_.size(); }
+  // min over segments of segment_distance(q0, q1, s); +inf when empty. Exact: the same
+  // per-segment function as a brute-force loop, with branch and bound on exact box distances.
+  double min_distance(PointNE q0, PointNE q1) const;
+  // Groups with an odd number of edges crossing the ray from p towards +y (east).
+  bool odd_crossings(PointNE p) const;
+  BoxNE bounds() const;
+
+ private:
+  struct Node {
+    BoxNE box;
+    uint32_t first;  // leaf: first segment; inner: index of the left child (right = left + 1)
+    uint32_t count;  // leaf: number of segments; 0 for an inner node
+  };
+  uint32_t build(uint32_t first, uint32_t count, std::vector<Node>& out);
+  std::vector<Segment> segs_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace mpgc::obstacle_manager::detail
