@@ -28,11 +28,21 @@ function(mpgc_add_gtest)
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} mpgc_testing GTest::gtest GTest::gtest_main)
   mpgc_target_defaults(${T_NAME})
+  # Lists inside PROPERTIES must keep their semicolons escaped through gtest_discover_tests.
+  string(REPLACE ";" "\\\\;" labels "${T_LABELS}")
+  set(env
+    "CYCLONEDDS_URI=file://${PROJECT_SOURCE_DIR}/deploy/cyclonedds/loopback.xml"
+    "MPGC_SHARED_DATA=${PROJECT_SOURCE_DIR}/../shared/data"
+    "MPGC_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+    "MPGC_BIN_DIR=${CMAKE_BINARY_DIR}/bin"
+    "ASAN_OPTIONS=detect_leaks=1"
+    "UBSAN_OPTIONS=print_stacktrace=1")
+  string(REPLACE ";" "\\\\;" env "${env}")
   gtest_discover_tests(${T_NAME}
     DISCOVERY_MODE PRE_TEST
     DISCOVERY_TIMEOUT 60
     PROPERTIES
-      LABELS "${T_LABELS}"
+      LABELS "${labels}"
       TIMEOUT ${T_TIMEOUT}
-      ENVIRONMENT "CYCLONEDDS_URI=file://${PROJECT_SOURCE_DIR}/deploy/cyclonedds/loopback.xml;MPGC_SHARED_DATA=${PROJECT_SOURCE_DIR}/../shared/data;MPGC_SOURCE_DIR=${PROJECT_SOURCE_DIR};MPGC_BIN_DIR=${CMAKE_BINARY_DIR}/bin;ASAN_OPTIONS=detect_leaks=1:abort_on_error=0;UBSAN_OPTIONS=print_stacktrace=1")
+      ENVIRONMENT "${env}")
 endfunction()

@@ -21,6 +21,9 @@
 
 namespace mpgc::dds {
 
+template <class... T>
+struct TypeList {};
+
 // Owns the temporary C buffers of one to_c conversion.
 class Arena {
  public:

@@ -1,6 +1,7 @@
 // The one way components read time: the wall clock, or the simulator's `clock` topic.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 
 namespace mpgc::rt {
@@ -29,7 +30,7 @@ class SimClock final : public Clock {
   bool advance_to(int64_t t_ns);
 
  private:
-  int64_t now_ns_ = 0;
+  std::atomic<int64_t> now_ns_{0};  // read by other threads (tests, loggers)
   bool started_ = false;
 };
 

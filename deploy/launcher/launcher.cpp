@@ -1,0 +1,237 @@
+// mpgc_launch: starts the components of a YAML launch file, prefixes every line of their output
+// with the component's name, forwards SIGINT/SIGTERM, restarts crashed components by policy and
+// exits non-zero when a required component fails. See deploy/launch/README.md for the format.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include "launch_file.hpp"
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;
+extern "C" void on_signal(int sig) { g_signal = sig; }
+
+struct Proc {
+  mpgc::launch::ComponentSpec spec;
+  pid_t pid = -1;
+  int out_fd = -1;
+  std::string partial;          // output not yet ended by a newline
+  int restarts = 0;
+  bool done = false;            // exited and will not be restarted
+  bool failed = false;          // exited with an error (non-zero code or a signal)
+  Clock::time_point restart_at{};
+  bool waiting_restart = false;
+};
+
+void emit(const std::string& name, const std::string& line) {
+  std::string out = "[" + name + "] " + line + "\n";
+  (void)!write(STDOUT_FILENO, out.data(), out.size());
+}
+
+bool start(Proc& p) {
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) return false;
+  std::vector<std::string> argv = p.spec.argv();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    return false;
+  }
+  if (pid == 0) {
+    setpgid(0, 0);  // own process group: signals reach the component and whatever it started
+    dup2(fds[1], STDOUT_FILENO);
+    dup2(fds[1], STDERR_FILENO);
+    for (const auto& [k, v] : p.spec.env) setenv(k.c_str(), v.c_str(), 1);
+    std::vector<char*> cargv;
+    for (auto& a : argv) cargv.push_back(a.data());
+    cargv.push_back(nullptr);
+    execvp(cargv[0], cargv.data());
+    std::fprintf(stderr, "cannot execute '%s': %s\n", cargv[0], std::strerror(errno));
+    _exit(127);
+  }
+  setpgid(pid, pid);
+  close(fds[1]);
+  fcntl(fds[0], F_SETFL, O_NONBLOCK);
+  p.pid = pid;
+  p.out_fd = fds[0];
+  p.partial.clear();
+  emit("launch", "started " + p.spec.name + " (pid " + std::to_string(pid) + "): " + p.spec.command_line());
+  return true;
+}
+
+// Reads what is available; emits complete lines (and the rest at end of stream).
+void drain(Proc& p) {
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = read(p.out_fd, buf, sizeof buf);
+    if (n > 0) {
+      p.partial.append(buf, static_cast<size_t>(n));
+      size_t pos;
+      while ((pos = p.partial.find('\n')) != std::string::npos) {
+        emit(p.spec.name, p.partial.substr(0, pos));
+        p.partial.erase(0, pos + 1);
+      }
+      continue;
+    }
+    if (n == 0) {  // end of stream
+      if (!p.partial.empty()) emit(p.spec.name, p.partial);
+      p.partial.clear();
+      close(p.out_fd);
+      p.out_fd = -1;
+    }
+    return;
+  }
+}
+
+std::string describe(int status) {
+  if (WIFEXITED(status)) return "exited with code " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) return std::string("killed by signal ") + strsignal(WTERMSIG(status));
+  return "stopped";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mpgc_launch: start the components of a launch file"};
+  std::string file;
+  int domain = -1;
+  double stop_timeout = 5.0;
+  app.add_option("file", file, "launch file (YAML)")->required();
+  app.add_option("--domain", domain, "DDS domain for every component (overrides the file)");
+  app.add_option("--stop-timeout", stop_timeout, "[s] grace period after SIGTERM before SIGKILL");
+  CLI11_PARSE(app, argc, argv);
+
+  mpgc::launch::LaunchFile lf;
+  try {
+    lf = mpgc::launch::load(file, fs::canonical("/proc/self/exe").parent_path().string());
+  } catch (const std::exception& e) {
+    std::cerr << "mpgc_launch: " << e.what() << "\n";
+    return 2;
+  }
+  if (domain >= 0) lf.domain = domain;
+
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  std::vector<Proc> procs;
+  for (auto& c : lf.components) {
+    if (lf.domain >= 0) c.env["MPGC_DOMAIN"] = std::to_string(lf.domain);
+    procs.push_back(Proc{c});
+  }
+  for (auto& p : procs) {
+    if (!start(p)) {
+      emit("launch", "cannot start " + p.spec.name + ": " + std::strerror(errno));
+      p.done = p.failed = true;
+    }
+  }
+
+  bool stopping = false;
+  bool required_failed = false;
+  Clock::time_point kill_at{};
+  for (;;) {
+    if (g_signal != 0 && !stopping) {
+      emit("launch", std::string("received ") + strsignal(g_signal) + ", stopping all components");
+      stopping = true;
+    }
+    if (stopping && kill_at == Clock::time_point{}) {
+      for (auto& p : procs)
+        if (p.pid > 0) kill(-p.pid, SIGTERM);
+      kill_at = Clock::now() + std::chrono::milliseconds(static_cast<int>(stop_timeout * 1000));
+    }
+    if (stopping && Clock::now() > kill_at) {
+      for (auto& p : procs)
+        if (p.pid > 0) {
+          emit("launch", p.spec.name + " did not stop in time: SIGKILL");
+          kill(-p.pid, SIGKILL);
+          p.failed = true;
+        }
+      kill_at = Clock::now() + std::chrono::hours(1);
+    }
+
+    std::vector<pollfd> fds;
+    std::vector<Proc*> owners;
+    for (auto& p : procs)
+      if (p.out_fd >= 0) {
+        fds.push_back({p.out_fd, POLLIN, 0});
+        owners.push_back(&p);
+      }
+    if (!fds.empty()) {
+      poll(fds.data(), fds.size(), 100);
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    for (size_t i = 0; i < fds.size(); ++i)
+      if (fds[i].revents != 0) drain(*owners[i]);
+
+    for (auto& p : procs) {
+      if (p.pid <= 0) continue;
+      int status = 0;
+      if (waitpid(p.pid, &status, WNOHANG) != p.pid) continue;
+      if (p.out_fd >= 0) {
+        drain(p);
+        if (p.out_fd >= 0) close(p.out_fd);
+        p.out_fd = -1;
+      }
+      p.pid = -1;
+      const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+      emit("launch", p.spec.name + " " + describe(status));
+      const bool may_restart = !stopping && p.restarts < p.spec.max_restarts &&
+                               (p.spec.restart == "always" || (p.spec.restart == "on-failure" && !ok));
+      if (may_restart) {
+        p.waiting_restart = true;
+        p.restart_at = Clock::now() + std::chrono::milliseconds(static_cast<int>(p.spec.restart_delay * 1000));
+        continue;
+      }
+      p.done = true;
+      p.failed = p.failed || !ok;
+      if (p.failed && p.spec.required && !stopping) {
+        emit("launch", "required component " + p.spec.name + " failed: stopping all components");
+        required_failed = true;
+        stopping = true;
+      }
+    }
+    for (auto& p : procs) {
+      if (!p.waiting_restart || Clock::now() < p.restart_at) continue;
+      p.waiting_restart = false;
+      ++p.restarts;
+      emit("launch", "restarting " + p.spec.name + " (" + std::to_string(p.restarts) + "/" +
+                         std::to_string(p.spec.max_restarts) + ")");
+      if (!start(p)) p.done = p.failed = true;
+    }
+
+    bool all_done = true;
+    for (auto& p : procs) all_done = all_done && p.done && p.out_fd < 0;
+    if (all_done) break;
+  }
+
+  int failed = 0;
+  for (auto& p : procs) failed += (p.failed && p.spec.required) ? 1 : 0;
+  emit("launch", failed == 0 && !required_failed ? "all components stopped cleanly"
+                                                 : std::to_string(failed) + " required component(s) failed");
+  return failed == 0 && !required_failed ? 0 : 1;
+}

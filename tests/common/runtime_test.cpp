@@ -1,0 +1,169 @@
+// The component runtime over DDS: simulated-time timers and lockstep acks on the clock topic,
+// latched samples for late joiners, and liveliness loss of a killed writer.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include <spdlog/sinks/null_sink.h>
+
+#include "mpgc/msg/plan.hpp"
+#include "mpgc/runtime/component.hpp"
+#include "mpgc/testing.hpp"
+#include "mpgc/topics.hpp"
+
+extern char** environ;
+
+namespace dds = mpgc::dds;
+namespace msg = mpgc::msg;
+namespace rt = mpgc::rt;
+
+namespace {
+
+template <class Pred>
+bool wait_for(Pred pred, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    if (pred()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return pred();
+}
+
+std::shared_ptr<spdlog::logger> quiet() {
+  return std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::null_sink_mt>());
+}
+
+rt::RuntimeParams runtime(const std::string& clock) {
+  rt::RuntimeParams p;
+  p.domain = mpgc::testing::unique_domain();
+  p.clock = clock;
+  return p;
+}
+
+// Spins a component on its own thread; stops and joins it when the scope ends (also on ASSERT).
+class Spinner {
+ public:
+  explicit Spinner(rt::Component& c) : c_(c), t_([&c] { c.spin(); }) {}
+  ~Spinner() { stop(); }
+  void stop() {
+    if (!t_.joinable()) return;
+    c_.stop();
+    t_.join();
+  }
+
+ private:
+  rt::Component& c_;
+  std::thread t_;
+};
+
+}  // namespace
+
+TEST(Runtime, SimTimeTimersFireOnClockAndAckLockstep) {
+  rt::Component c("sim_node", runtime("sim"), quiet());
+  std::vector<int64_t> fired;  // only touched on the executor thread until it is joined
+  c.every(1.0, [&] { fired.push_back(c.now_ns()); });
+
+  dds::Participant p(c.participant().domain_id());
+  dds::Topic<msg::Clock> tc(p, mpgc::topics::kClock);
+  dds::Topic<msg::StepAck> ta(p, mpgc::topics::kStepAck);
+  dds::Writer<msg::Clock> clock(p, tc, dds::QosProfile::command(16));
+  dds::Reader<msg::StepAck> acks(p, ta, dds::QosProfile::command(16));
+
+  Spinner spin(c);
+  ASSERT_TRUE(wait_for([&] { return clock.matched() >= 1 && acks.matched() >= 1; }, 10.0));
+  // Clock ticks every 0.5 s; the 1 s timer fires on the first tick and then each whole second.
+  std::vector<uint64_t> acked;
+  for (uint64_t step = 0; step <= 6; ++step) {
+    clock.write(msg::Clock{static_cast<int64_t>(step) * 500'000'000, step, 500'000'000, true});
+    // Lockstep: wait for this step's ack before the next tick, as the simulator does.
+    ASSERT_TRUE(wait_for([&] {
+      for (auto& a : acks.take()) acked.push_back(a.value.step);
+      return !acked.empty() && acked.back() == step;
+    }, 10.0)) << "no ack for step " << step;
+  }
+  spin.stop();
+  EXPECT_EQ(fired, (std::vector<int64_t>{0, 1'000'000'000, 2'000'000'000, 3'000'000'000}));
+  EXPECT_EQ(acked, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5, 6}));
+}
+
+TEST(Runtime, ClockGoingBackwardsIsRejectedAndCounted) {
+  rt::Component c("sim_node", runtime("sim"), quiet());
+  dds::Participant p(c.participant().domain_id());
+  dds::Topic<msg::Clock> tc(p, mpgc::topics::kClock);
+  dds::Writer<msg::Clock> clock(p, tc, dds::QosProfile::command(16));
+  Spinner spin(c);
+  ASSERT_TRUE(wait_for([&] { return clock.matched() >= 1; }, 10.0));
+  clock.write(msg::Clock{2'000'000'000, 4, 500'000'000, false});
+  clock.write(msg::Clock{1'000'000'000, 2, 500'000'000, false});
+  ASSERT_TRUE(wait_for([&] { return c.now_ns() == 2'000'000'000; }, 10.0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  spin.stop();
+  EXPECT_EQ(c.now_ns(), 2'000'000'000);
+  EXPECT_EQ(c.counter(std::string("rejected.") + mpgc::topics::kClock), 1u);
+}
+
+TEST(Runtime, LateJoinerReceivesLatchedSample) {
+  const auto domain = static_cast<uint32_t>(mpgc::testing::unique_domain());
+  dds::Participant pub(domain);
+  dds::Topic<msg::MissionGoal> tp(pub, mpgc::topics::kGoal);
+  dds::Writer<msg::MissionGoal> w(pub, tp, dds::QosProfile::latched());
+  msg::MissionGoal g;
+  g.goal_id = 3;
+  g.x = 32000;
+  g.header.source = "mission";
+  w.write(g);
+  g.goal_id = 4;  // keep-last 1: only the latest goal is latched
+  w.write(g);
+  // The reader joins after both writes (another participant, as a restarted planner would).
+  dds::Participant sub(domain);
+  dds::Topic<msg::MissionGoal> ts(sub, mpgc::topics::kGoal);
+  dds::Reader<msg::MissionGoal> r(sub, ts, dds::QosProfile::latched());
+  std::vector<msg::MissionGoal> got;
+  ASSERT_TRUE(wait_for([&] {
+    for (auto& s : r.take()) got.push_back(s.value);
+    return !got.empty();
+  }, 10.0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  for (auto& s : r.take()) got.push_back(s.value);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].goal_id, 4u);
+  EXPECT_EQ(got[0].x, 32000);
+}
+
+TEST(Runtime, KilledWritersLivelinessLossIsDetected) {
+  const int domain = mpgc::testing::unique_domain();
+  rt::Component c("watcher", runtime("wall"), quiet());
+  std::atomic<int> alive{-1};
+  auto& reader = c.subscribe<msg::Counter>("test/live", dds::QosProfile::command(), [](const msg::Counter&) {});
+  c.on_liveliness(reader, [&](int32_t n) { alive = n; });
+  Spinner spin(c);
+
+  const std::string exe = mpgc::testing::bin_dir() + "/mpgc_test_talker";
+  std::vector<std::string> args{exe, "--domain", std::to_string(domain), "--set", "topic=test/live",
+                                "--set", "dds.lease=0.5", "--log-level", "warn"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ);
+  const bool became_alive = spawned == 0 && wait_for([&] { return alive.load() == 1; }, 15.0);
+  if (spawned == 0) {
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+  }
+  const auto killed = std::chrono::steady_clock::now();
+  const bool lost = wait_for([&] { return alive.load() == 0; }, 5.0);
+  const double after = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
+  spin.stop();
+  ASSERT_EQ(spawned, 0) << "cannot start " << exe;
+  ASSERT_TRUE(became_alive);
+  EXPECT_TRUE(lost) << "liveliness loss not seen 5 s after SIGKILL (lease 0.5 s)";
+  std::printf("liveliness loss noticed %.2f s after SIGKILL (lease 0.5 s)\n", after);
+}
