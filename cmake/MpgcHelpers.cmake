@@ -28,8 +28,9 @@ function(mpgc_add_gtest)
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} mpgc_testing GTest::gtest GTest::gtest_main)
   mpgc_target_defaults(${T_NAME})
-  # Lists inside PROPERTIES must keep their semicolons escaped through gtest_discover_tests.
-  string(REPLACE ";" "\\\\;" labels "${T_LABELS}")
+  gtest_discover_tests(${T_NAME} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60)
+  # gtest_discover_tests (CMake 3.25) flattens list-valued PROPERTIES, so the labels and the
+  # environment are set by a second include file that ctest reads after the discovered tests.
   set(env
     "CYCLONEDDS_URI=file://${PROJECT_SOURCE_DIR}/deploy/cyclonedds/loopback.xml"
     "MPGC_SHARED_DATA=${PROJECT_SOURCE_DIR}/../shared/data"
@@ -37,12 +38,11 @@ function(mpgc_add_gtest)
     "MPGC_BIN_DIR=${CMAKE_BINARY_DIR}/bin"
     "ASAN_OPTIONS=detect_leaks=1"
     "UBSAN_OPTIONS=print_stacktrace=1")
-  string(REPLACE ";" "\\\\;" env "${env}")
-  gtest_discover_tests(${T_NAME}
-    DISCOVERY_MODE PRE_TEST
-    DISCOVERY_TIMEOUT 60
-    PROPERTIES
-      LABELS "${labels}"
-      TIMEOUT ${T_TIMEOUT}
-      ENVIRONMENT "${env}")
+  set(props_file ${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_properties.cmake)
+  file(WRITE ${props_file}
+    "if(${T_NAME}_TESTS)\n"
+    "  set_tests_properties(\${${T_NAME}_TESTS} PROPERTIES LABELS \"${T_LABELS}\" TIMEOUT ${T_TIMEOUT}\n"
+    "    ENVIRONMENT \"${env}\")\n"
+    "endif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${props_file})
 endfunction()
