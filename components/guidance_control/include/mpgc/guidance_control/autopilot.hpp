@@ -1,0 +1,85 @@
+// Heading autopilot (PID with anti-windup, derivative on the measured yaw rate, rudder angle and
+// rate limits) and speed control on propeller rpm (feed-forward from a speed -> rpm map plus PI),
+// with pole-placement tuning of the heading PID from first-order Nomoto K, T. No DDS, no clock.
+#pragma once
+
+#include <vector>
+
+namespace mpgc::guidance_control {
+
+// Defaults: KVLCC2 at about 7 m/s, tuned with tune_heading_pid (README.md "Tuning").
+struct HeadingAutopilotParams {
+  double kp = 2.5;                 // [rad/rad] rudder per heading error
+  double ki = 0.0025;              // [1/s] rudder per integrated heading error
+  double kd = 110.0;               // [s] rudder per yaw rate (derivative on the measurement)
+  double max_rudder = 0.6109;      // [rad] rudder angle limit (35 deg)
+  double max_rudder_rate = 0.0401; // [rad/s] rudder rate limit (2.3 deg/s, KVLCC2 steering gear)
+  double integral_limit = 0.1745;  // [rad] bound of the integral's rudder contribution (10 deg)
+  void validate() const;           // throws std::invalid_argument naming the bad field
+};
+
+// delta = kp e + ki int(e) - kd r, e = wrap(psi_d - psi); positive rudder turns to starboard.
+// Anti-windup: the integral does not grow while the output is held by the angle or rate limit in
+// the direction the error pushes (conditional integration), and it is bounded by integral_limit.
+class HeadingAutopilot {
+ public:
+  explicit HeadingAutopilot(const HeadingAutopilotParams& p);
+  // Forgets the integral and starts the rate limit from `rudder` [rad].
+  void reset(double rudder = 0.0);
+  // One step: desired heading, measured heading [rad], measured yaw rate [rad/s], dt [s] -> rudder [rad].
+  double update(double psi_d, double psi, double r, double dt);
+  double integral() const { return integral_; }  // [rad]
+  const HeadingAutopilotParams& params() const { return p_; }
+
+ private:
+  HeadingAutopilotParams p_;
+  double integral_ = 0.0;
+  double last_ = 0.0;
+};
+
+// Defaults: KVLCC2 (MARIN free-running tests: 15.5 kn at about 92 rpm; rpm roughly proportional to
+// speed for a fixed-pitch propeller at constant advance ratio).
+struct SpeedControllerParams {
+  std::vector<double> map_speed{0.0, 8.0};  // [m/s] speed -> rpm map: speeds, strictly increasing
+  std::vector<double> map_rpm{0.0, 92.0};   // [1/min] rpm at those speeds in calm water
+  double kp = 8.0;                          // [rpm/(m/s)] proportional gain on the speed error
+  double ki = 0.04;                         // [rpm/m] integral gain (kp / ki ~ surge time constant)
+  double integral_limit = 20.0;             // [1/min] bound of the integral's contribution
+  double min_rpm = 0.0;                     // [1/min] lowest command (0: no astern from this loop)
+  double max_rpm = 100.0;                   // [1/min] highest command
+  double max_rpm_rate = 2.0;                // [1/min/s] slew limit of the command
+  void validate() const;                    // throws std::invalid_argument naming the bad field
+};
+
+class SpeedController {
+ public:
+  explicit SpeedController(const SpeedControllerParams& p);
+  void reset(double rpm = 0.0);
+  // Feed-forward rpm for a speed (piecewise linear, linear extrapolation past the last point).
+  double feedforward(double speed) const;
+  // One step: desired speed, measured surge speed [m/s], dt [s] -> propeller rpm [1/min].
+  double update(double u_d, double u, double dt);
+  double integral() const { return integral_; }  // [1/min]
+  const SpeedControllerParams& params() const { return p_; }
+
+ private:
+  SpeedControllerParams p_;
+  double integral_ = 0.0;
+  double last_ = 0.0;
+};
+
+// First-order Nomoto model T r' + r = K delta.
+struct NomotoModel {
+  double K = 0.0;  // [1/s] rudder-to-yaw-rate gain
+  double T = 0.0;  // [s] time constant
+};
+
+// Pole placement (Fossen 2011, section 15.3): with delta = -(kp e + kd r + ki int e) the closed loop
+// T psi'' + (1 + K kd) psi' + K kp psi = K kp psi_d has natural frequency omega_n and damping zeta when
+//   kp = T omega_n^2 / K,  kd = (2 zeta omega_n T - 1) / K,  ki = omega_n kp / 10.
+// Limits are copied from `base`. Throws std::invalid_argument for K <= 0, T <= 0, omega_n <= 0 or
+// zeta <= 0, or when kd would be negative (omega_n too low for this hull: raise it).
+HeadingAutopilotParams tune_heading_pid(const NomotoModel& m, double omega_n, double zeta,
+                                        const HeadingAutopilotParams& base = {});
+
+}  // namespace mpgc::guidance_control

@@ -1,0 +1,194 @@
+#include "mpgc/guidance_control/guidance_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace mpgc::guidance_control {
+
+namespace {
+std::string seconds(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f s", s);
+  return buf;
+}
+}  // namespace
+
+const char* to_string(Mode m) {
+  switch (m) {
+    case Mode::Idle: return "idle";
+    case Mode::Following: return "following";
+    case Mode::Arrived: return "arrived";
+    case Mode::SafeMode: return "safe_mode";
+  }
+  return "?";
+}
+
+std::string check_nav(const NavInput& n) {
+  if (!std::isfinite(n.x) || !std::isfinite(n.y)) return "non-finite position";
+  if (!std::isfinite(n.heading)) return "non-finite heading";
+  if (!std::isfinite(n.u)) return "non-finite surge speed";
+  if (!std::isfinite(n.r)) return "non-finite yaw rate";
+  if (std::abs(n.x) > 1e7 || std::abs(n.y) > 1e7) return "position more than 1e7 m from the origin";
+  if (std::abs(n.u) > 50.0) return "surge speed beyond 50 m/s";
+  if (std::abs(n.r) > 1.0) return "yaw rate beyond 1 rad/s";
+  return {};
+}
+
+void GuidanceControlParams::validate() const {
+  follower.validate();
+  heading.validate();
+  speed.validate();
+  auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!pos(plan_timeout)) throw std::invalid_argument("GuidanceControlParams.plan_timeout must be finite and > 0 s");
+  if (!pos(nav_timeout)) throw std::invalid_argument("GuidanceControlParams.nav_timeout must be finite and > 0 s");
+  if (!pos(safe_speed)) throw std::invalid_argument("GuidanceControlParams.safe_speed must be finite and > 0 m/s");
+  if (!std::isfinite(arrival_speed) || arrival_speed < 0.0)
+    throw std::invalid_argument("GuidanceControlParams.arrival_speed must be finite and >= 0 m/s");
+  if (!pos(max_dt)) throw std::invalid_argument("GuidanceControlParams.max_dt must be finite and > 0 s");
+}
+
+GuidanceController::GuidanceController(const GuidanceControlParams& p)
+    : p_(p), follower_(p.follower), heading_(p.heading), speed_(p.speed) {
+  p_.validate();
+}
+
+std::string GuidanceController::on_plan(const PlanInput& plan, double t) {
+  if (!std::isfinite(t)) return "non-finite receive time";
+  if (plan.kind == PlanKind::Ok || plan.kind == PlanKind::Relaxed) {
+    const std::string why = check_path(plan.waypoints);
+    if (!why.empty()) return why;
+  }
+  if (std::isfinite(plan.stamp) && t - plan.stamp > p_.plan_timeout)
+    return "plan is " + seconds(t - plan.stamp) + " old (plan_timeout " + seconds(p_.plan_timeout) + ")";
+  pending_ = plan;
+  pending_t_ = t;
+  return {};
+}
+
+std::string GuidanceController::on_nav(const NavInput& nav, double t) {
+  if (!std::isfinite(t)) return "non-finite receive time";
+  const std::string why = check_nav(nav);
+  if (!why.empty()) return why;
+  nav_ = nav;
+  nav_t_ = t;
+  return {};
+}
+
+void GuidanceController::enter_safe(const std::string& why) {
+  mode_ = Mode::SafeMode;
+  detail_ = why;
+  hold_set_ = false;
+}
+
+Command GuidanceController::step(double t) {
+  if (!std::isfinite(t)) throw std::invalid_argument("GuidanceController::step: non-finite time");
+  double dt = 0.0;
+  if (!started_) {
+    started_ = true;
+    start_t_ = t;
+  } else {
+    dt = std::clamp(t - last_t_, 0.0, p_.max_dt);
+  }
+  last_t_ = std::max(last_t_, t);
+
+  Command cmd;
+  Status& st = cmd.status;
+
+  // No usable own state: nothing to steer by. Rudder midships, slow down; resume when it returns.
+  if (!nav_ || t - nav_t_ > p_.nav_timeout) {
+    nav_lost_ = true;
+    heading_.reset(0.0);
+    speed_.reset(std::clamp(speed_.feedforward(p_.safe_speed), p_.speed.min_rpm, p_.speed.max_rpm));
+    st.mode = Mode::SafeMode;
+    st.detail = nav_ ? "navigation state " + seconds(t - nav_t_) + " old" : "no navigation state";
+    st.plan_id = plan_id_;
+    st.desired_speed = p_.safe_speed;
+    cmd.rudder = 0.0;
+    cmd.propeller_rpm = speed_.feedforward(p_.safe_speed);
+    cmd.propeller_rpm = std::clamp(cmd.propeller_rpm, p_.speed.min_rpm, p_.speed.max_rpm);
+    return cmd;
+  }
+  const NavInput nav = *nav_;
+  if (nav_lost_) {
+    nav_lost_ = false;
+    hold_set_ = false;  // hold the heading the ship has now, not the one from before the outage
+  }
+
+  // A new plan is joined here, where the ship position is known.
+  if (pending_) {
+    const PlanInput plan = std::move(*pending_);
+    pending_.reset();
+    plan_id_ = plan.plan_id;
+    if (plan.kind == PlanKind::NoPath || plan.kind == PlanKind::InvalidInput) {
+      follower_.clear();
+      have_plan_time_ = false;
+      enter_safe(std::string("planner reports ") + (plan.kind == PlanKind::NoPath ? "no path" : "invalid input") +
+                 (plan.reason.empty() ? "" : ": " + plan.reason));
+    } else {
+      follower_.set_path(plan.waypoints, nav.x, nav.y);  // validated in on_plan
+      mode_ = Mode::Following;
+      detail_ = "following plan " + std::to_string(plan.plan_id) + (plan.kind == PlanKind::Relaxed ? " (COLREG relaxed)" : "");
+      plan_t_ = pending_t_;
+      have_plan_time_ = true;
+      hold_set_ = false;
+    }
+  }
+
+  // Stale plan: nothing valid for plan_timeout (measured from the start before the first plan).
+  if (mode_ == Mode::Following || mode_ == Mode::Idle) {
+    const double age = t - (have_plan_time_ ? plan_t_ : start_t_);
+    if (age > p_.plan_timeout) {
+      follower_.clear();
+      have_plan_time_ = false;
+      enter_safe("no valid plan for " + seconds(age));
+    }
+  }
+
+  double psi_d = 0.0, u_d = 0.0;
+  switch (mode_) {
+    case Mode::Idle:
+      if (!hold_set_) {
+        hold_heading_ = nav.heading;
+        hold_speed_ = std::max(nav.u, 0.0);
+        hold_set_ = true;
+      }
+      psi_d = hold_heading_;
+      u_d = hold_speed_;
+      break;
+    case Mode::SafeMode:
+      if (!hold_set_) {
+        hold_heading_ = nav.heading;
+        hold_set_ = true;
+      }
+      psi_d = hold_heading_;
+      u_d = p_.safe_speed;
+      break;
+    case Mode::Following:
+    case Mode::Arrived: {
+      const GuidanceOutput g = follower_.update(nav.x, nav.y, nav.u, dt);
+      if (g.arrived && mode_ == Mode::Following) {
+        mode_ = Mode::Arrived;
+        detail_ = "last waypoint of plan " + std::to_string(plan_id_) + " reached";
+      }
+      psi_d = g.desired_heading;
+      u_d = g.arrived ? p_.arrival_speed : g.desired_speed;
+      st.active_waypoint = static_cast<uint32_t>(g.active_waypoint);
+      st.cross_track_error = g.cross_track_error;
+      st.along_track = g.along_track;
+      break;
+    }
+  }
+
+  cmd.rudder = heading_.update(psi_d, nav.heading, nav.r, dt);
+  cmd.propeller_rpm = speed_.update(u_d, nav.u, dt);
+  st.mode = mode_;
+  st.detail = detail_;
+  st.plan_id = plan_id_;
+  st.desired_heading = psi_d;
+  st.desired_speed = u_d;
+  return cmd;
+}
+
+}  // namespace mpgc::guidance_control
