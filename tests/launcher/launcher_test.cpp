@@ -170,3 +170,37 @@ TEST(Launcher, MissingExecutableFailsTheRun) {
   EXPECT_EQ(l.wait_exit(10.0), 1) << l.output();
   EXPECT_NE(l.output().find("[ghost] cannot execute '/nonexistent/mpgc_ghost'"), std::string::npos) << l.output();
 }
+
+namespace {
+// Runs a command, returns (exit code, stdout+stderr).
+std::pair<int, std::string> run(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (p == nullptr) return {-1, ""};
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+}  // namespace
+
+TEST(ComponentCli, HelpListsParametersWithUnitsAndRanges) {
+  const auto [code, out] = run(mpgc::testing::bin_dir() + "/mpgc_test_talker --help");
+  EXPECT_EQ(code, 0);
+  for (const char* s : {"rate", "Hz", "[0.1, 1000]", "dds.domain", "clock.source", "wall|sim", "log.level"})
+    EXPECT_NE(out.find(s), std::string::npos) << s << "\n" << out;
+}
+
+TEST(ComponentCli, BadParametersExitWithCode2AndNameEachOne) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/talker_bad.yaml") << "rate: 5000\nclock:\n  source: gps\n";
+  const auto [code, out] = run(mpgc::testing::bin_dir() + "/mpgc_test_talker --params " + dir +
+                               "/talker_bad.yaml --set count=-1");
+  EXPECT_EQ(code, 2) << out;
+  for (const char* s : {"'rate'", "5000 Hz is outside its range", "'clock.source'", "'count'", "talker_bad.yaml"})
+    EXPECT_NE(out.find(s), std::string::npos) << s << "\n" << out;
+  const auto [code2, out2] = run(mpgc::testing::bin_dir() + "/mpgc_test_talker --set no.such=1");
+  EXPECT_EQ(code2, 2);
+  EXPECT_NE(out2.find("unknown parameter 'no.such'"), std::string::npos) << out2;
+}
