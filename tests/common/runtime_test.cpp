@@ -108,6 +108,32 @@ TEST(Runtime, ClockGoingBackwardsIsRejectedAndCounted) {
   EXPECT_EQ(c.counter(std::string("rejected.") + mpgc::topics::kClock), 1u);
 }
 
+TEST(Runtime, HealthSampleCarriesRejectedInputCounters) {
+  rt::RuntimeParams rp = runtime("wall");
+  rp.health_period = 0.1;
+  rt::Component c("checker", rp, quiet());
+  c.subscribe<msg::Counter>("test/values", dds::QosProfile::command(), [](const msg::Counter&) {},
+                            [](const msg::Counter& v) { return v.value > 100 ? std::string("value > 100") : ""; });
+  dds::Participant p(c.participant().domain_id());
+  dds::Topic<msg::Counter> tv(p, "test/values");
+  dds::Topic<msg::ComponentHealth> th(p, mpgc::topics::kHealth);
+  dds::Writer<msg::Counter> w(p, tv, dds::QosProfile::command());
+  dds::Reader<msg::ComponentHealth> health(p, th, dds::QosProfile::latched());
+  Spinner spin(c);
+  ASSERT_TRUE(wait_for([&] { return w.matched() == 1; }, 10.0));
+  for (uint64_t v : {1, 500, 2, 700}) w.write(msg::Counter{"x", v});
+  msg::ComponentHealth last;
+  ASSERT_TRUE(wait_for([&] {
+    for (auto& s : health.take()) last = s.value;
+    return last.rejected_inputs == 2;
+  }, 10.0)) << "rejected_inputs " << last.rejected_inputs;
+  EXPECT_EQ(last.component, "checker");
+  EXPECT_EQ(last.state, msg::HealthState::HEALTH_OK);
+  ASSERT_EQ(last.counters.size(), 1u);
+  EXPECT_EQ(last.counters[0].name, "rejected.test/values");
+  EXPECT_EQ(last.counters[0].value, 2u);
+}
+
 TEST(Runtime, LateJoinerReceivesLatchedSample) {
   const auto domain = static_cast<uint32_t>(mpgc::testing::unique_domain());
   dds::Participant pub(domain);
