@@ -1,0 +1,743 @@
+// RRT* of seed 000 §3 with the problem set-up of §4 and the COLREG constraint of §5.
+//
+// Tree nodes carry the cost-to-come of eq. 5 (the cost of a waypoint sums over its path from the
+// root), the path length (time = length / speed, for the target positions of eq. 3) and the unit
+// direction of the incoming leg (for the turning angle of eq. 2 and the steering cost of eq. 6).
+// Because the time at a node and the turning angle at a node depend on the path to it, a rewire
+// re-validates the moved subtree (moving targets, COLREG, turn at the rewired node) and is
+// refused if any edge there would become invalid; costs of the subtree are recomputed.
+// The goal is not a tree node: every node within one step of it may hold a checked goal edge;
+// the best solution is the cheapest node + goal edge and is snapshotted whenever it improves, so
+// the reported cost never increases (anytime).
+#include "mpgc/opp/planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "mpgc/opp/node_grid.hpp"
+
+namespace mpgc::opp {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+void require(bool ok, const char* field, const std::string& why) {
+  if (!ok) throw std::invalid_argument(std::string("opp::Params.") + field + " " + why);
+}
+}  // namespace
+
+void Params::validate() const {
+  auto fin = [](double v) { return std::isfinite(v); };
+  require(fin(safety_distance) && safety_distance >= 0, "safety_distance", "must be finite and >= 0");
+  require(fin(colreg_distance) && colreg_distance >= safety_distance, "colreg_distance",
+          "must be finite and >= safety_distance");
+  require(fin(max_turn) && max_turn > 0, "max_turn", "must be finite and > 0");
+  require(fin(colreg.theta_overtaking) && colreg.theta_overtaking > 0 && colreg.theta_overtaking < kPi / 2,
+          "colreg.theta_overtaking", "must be in (0, pi/2)");
+  require(fin(colreg.theta_head_on) && colreg.theta_head_on > 0 && colreg.theta_head_on < kPi / 2,
+          "colreg.theta_head_on", "must be in (0, pi/2)");
+  require(fin(colreg.epsilon) && colreg.epsilon > 0 && colreg.epsilon < 1, "colreg.epsilon", "must be in (0, 1)");
+  require(fin(colreg.min_speed) && colreg.min_speed >= 0, "colreg.min_speed", "must be finite and >= 0");
+  require(fin(gamma_s) && gamma_s >= 0, "gamma_s", "must be finite and >= 0");
+  require(fin(gamma_f) && gamma_f >= 0, "gamma_f", "must be finite and >= 0");
+  require(fin(gamma_m) && gamma_m >= 0, "gamma_m", "must be finite and >= 0");
+  require(fin(gamma_l) && gamma_l >= 0, "gamma_l", "must be finite and >= 0");
+  require(gamma_s + gamma_f + gamma_m + gamma_l > 0, "gamma_l", "all cost weights are zero");
+  require(fin(min_margin) && min_margin > 0, "min_margin", "must be finite and > 0");
+  require(fin(step) && step > 0, "step", "must be finite and > 0");
+  require(fin(goal_bias) && goal_bias >= 0 && goal_bias <= 1, "goal_bias", "must be in [0, 1]");
+  require(fin(rewire_factor) && rewire_factor >= 1, "rewire_factor", "must be >= 1");
+  require(max_iterations >= 1 && max_iterations <= 10'000'000, "max_iterations", "must be in [1, 1e7]");
+  require(fin(time_budget) && time_budget > 0, "time_budget", "must be finite and > 0");
+  require(fin(compliant_share) && compliant_share > 0 && compliant_share <= 1, "compliant_share",
+          "must be in (0, 1]");
+}
+
+const char* to_string(Status s) {
+  switch (s) {
+    case Status::kOk: return "ok";
+    case Status::kRelaxed: return "relaxed";
+    case Status::kNoPath: return "no_path";
+    case Status::kInvalidInput: return "invalid_input";
+  }
+  return "?";
+}
+
+namespace {
+
+// Shared edge geometry and cost of §4, used by the tree and by check_path / path_cost.
+class Model {
+ public:
+  Model(const Problem& pb, const Params& pr) : pb_(pb), pr_(pr) {
+    fixed_ = pb.fixed ? pb.fixed : &none_;
+    cos_turn_ = pr.max_turn >= kPi ? -2.0 : std::cos(pr.max_turn);
+    ds2_ = pr.safety_distance * pr.safety_distance;
+    dc2_ = pr.colreg_distance * pr.colreg_distance;
+    inv_u_ = 1.0 / pb.speed;
+    goal_any_heading_ = !std::isfinite(pb.goal.heading) || pb.goal.heading_tolerance >= kPi;
+  }
+
+  enum Reject { kOkEdge = 0, kTurn, kTarget, kColreg, kFixed, kGoalHeading, kRejectCount };
+
+  const FixedObstacles& fixed() const { return *fixed_; }
+  bool has_targets() const { return !pb_.targets.empty(); }
+  bool turn_limited() const { return cos_turn_ > -1.5; }
+
+  // eq. 2: |theta| <= max_turn, as cos(theta) >= cos(max_turn). `dir` is the unit incoming direction.
+  bool turn_ok(Vec2 dir, Vec2 seg, double len, bool at_root) const {
+    if (!turn_limited() || (at_root && !pr_.turn_limit_at_start)) return true;
+    return dot(dir, seg) >= (cos_turn_ - 1e-12) * len;
+  }
+
+  bool goal_heading_ok(Vec2 seg) const {
+    if (goal_any_heading_) return true;
+    const double course = std::atan2(seg.y, seg.x);
+    double d = std::fabs(std::remainder(course - pb_.goal.heading, 2.0 * kPi));
+    return d <= pb_.goal.heading_tolerance;
+  }
+
+  // eq. 3-4 along the leg a -> b started at time ta, against every target; plus §5 if colreg.
+  Reject moving_ok(Vec2 a, double ta, Vec2 b, double len, bool colreg) const {
+    if (pb_.targets.empty()) return kOkEdge;
+    const Vec2 vel = (pb_.speed / len) * (b - a);
+    const double T = len * inv_u_;
+    for (const Target& tg : pb_.targets) {
+      const Vec2 y = tg.p + ta * tg.v;
+      const Vec2 r0 = a - y;
+      if (min_dist2_linear(r0, vel - tg.v, T) < ds2_) return kTarget;
+      if (!colreg) continue;
+      // §5 at the leg's start; a leg longer than one step is checked every step along it, as the
+      // chain of collinear waypoints it stands for (a long edge must not jump over the zone).
+      for (double s = 0.0; s < len; s += pr_.step) {
+        const Vec2 xs = a + (s / len) * (b - a);
+        const Vec2 ys = y + (s * inv_u_) * tg.v;
+        if (norm2(xs - ys) < dc2_ && !colreg_check(xs, vel, ys, tg.v, pr_.colreg).compliant) return kColreg;
+      }
+    }
+    return kOkEdge;
+  }
+
+  // Node term of eq. 7 (weighted).
+  double fixed_term(Vec2 p) const {
+    if (pr_.gamma_f == 0.0) return 0.0;
+    return pr_.gamma_f / std::max(fixed_->nearest(p), pr_.min_margin);
+  }
+  // Node term of eq. 8 (weighted): nearest target at time t.
+  double moving_term(Vec2 p, double t) const {
+    if (pr_.gamma_m == 0.0 || pb_.targets.empty()) return 0.0;
+    double best = kInf;
+    for (const Target& tg : pb_.targets) best = std::min(best, norm2(p - (tg.p + t * tg.v)));
+    return pr_.gamma_m / std::max(std::sqrt(best), pr_.min_margin);
+  }
+  // Steering term of eq. 6 at the node the leg leaves (weighted).
+  double steer_term(Vec2 dir, Vec2 seg, double len, bool at_root) const {
+    if (pr_.gamma_s == 0.0 || at_root) return 0.0;  // eq. 6 sums k = 1..p-1
+    const double c = std::clamp(dot(dir, seg) / len, -1.0, 1.0);
+    const double th = std::acos(c);
+    return pr_.gamma_s * th * th;
+  }
+  // Cost added by the leg a -> b (eq. 5 increment): steering at a, margins at b, length.
+  double edge_cost(Vec2 dir, bool at_root, Vec2 seg, double len, double fixed_b, Vec2 b, double tb) const {
+    return steer_term(dir, seg, len, at_root) + fixed_b + moving_term(b, tb) + pr_.gamma_l * len;
+  }
+
+  const Problem& pb_;
+  const Params& pr_;
+
+ private:
+  NoFixedObstacles none_;
+  const FixedObstacles* fixed_;
+  double cos_turn_, ds2_, dc2_, inv_u_;
+  bool goal_any_heading_;
+};
+
+// Random numbers with a fixed recipe (not std::uniform_real_distribution) so that the same seed
+// gives the same path on any standard library.
+struct Rng {
+  std::mt19937_64 g;
+  explicit Rng(uint64_t s) : g(s) {}
+  double u01() { return static_cast<double>(g() >> 11) * (1.0 / 9007199254740992.0); }
+};
+
+class Tree {
+ public:
+  Tree(const Model& m, const Problem& pb, const Params& pr, Stats& st, const Hooks& hooks)
+      : m_(m), pb_(pb), pr_(pr), st_(st), hooks_(hooks), rng_(pr.seed) {
+    grid_.reset(pb.bounds.min_x, pb.bounds.min_y, pb.bounds.max_x, pb.bounds.max_y);
+    nodes_.reserve(static_cast<size_t>(pr.max_iterations) + 64);
+    const double dim = 2.0;
+    k_rrt_ = pr.rewire_factor * (std::exp(1.0) + std::exp(1.0) / dim);
+    const double measure = (pb.bounds.max_x - pb.bounds.min_x) * (pb.bounds.max_y - pb.bounds.min_y);
+    r_rrt_ = pr.rewire_factor * std::sqrt(2.0 * (1.0 + 1.0 / dim) * (measure / kPi));
+    goal_fixed_ = m_.fixed_term(pb.goal.p);
+    approach_ = std::isfinite(pb.goal.heading) && pb.goal.heading_tolerance < kPi;
+    Node root;
+    root.p = pb.start;
+    root.dir = {std::cos(pb.heading), std::sin(pb.heading)};
+    root.fixed = m_.fixed_term(pb.start);
+    root.cost = root.fixed + m_.moving_term(pb.start, 0.0);  // k = 0 terms of eq. 7-8
+    root.len = 0.0;
+    add_node(root);
+    try_goal(0);
+  }
+
+  bool colreg = true;  // §5 enforced on new edges
+
+  // Inserts a previous path as a chain from the root (warm start). Returns true if it reaches the goal.
+  bool seed_chain(const std::vector<Vec2>& pts) {
+    int cur = 0;
+    for (const Vec2& p : pts) {
+      if (norm2(p - pb_.goal.p) < 1e-12) break;
+      if (!in_bounds(p)) break;
+      const Node& a = nodes_[cur];
+      const Vec2 seg = p - a.p;
+      const double len = norm(seg);
+      if (len < 1e-9) continue;
+      const bool root = cur == 0;
+      if (!m_.turn_ok(a.dir, seg, len, root)) break;
+      if (edge_reject(a.p, a.len * inv_speed(), p, len) != Model::kOkEdge) break;
+      if (!m_.fixed().segment_clear(a.p, p, pr_.safety_distance)) break;
+      Node n;
+      n.p = p;
+      n.dir = (1.0 / len) * seg;
+      n.fixed = m_.fixed_term(p);
+      n.len = a.len + len;
+      n.cost = a.cost + m_.edge_cost(a.dir, root, seg, len, n.fixed, p, n.len * inv_speed());
+      n.parent = cur;
+      cur = add_node(n);
+      try_goal(cur);
+    }
+    update_best();
+    return best_node_ >= 0;
+  }
+
+  // One RRT* iteration (§3).
+  void iterate() {
+    ++st_.iterations;
+    const bool goal_sample = rng_.u01() < pr_.goal_bias;
+    Vec2 q;
+    if (goal_sample) {
+      q = pb_.goal.p;
+      // With an arrival heading (§6), every other goal sample is an approach point one step
+      // before the goal on a course inside the tolerance, so nodes appear where a goal edge
+      // can meet the heading.
+      if (approach_ && rng_.u01() < 0.5) {
+        const double h = pb_.goal.heading + (2.0 * rng_.u01() - 1.0) * pb_.goal.heading_tolerance;
+        const double dist = pr_.step * (0.5 + 0.5 * rng_.u01());
+        q = pb_.goal.p - dist * Vec2{std::cos(h), std::sin(h)};
+        q.x = std::clamp(q.x, pb_.bounds.min_x, pb_.bounds.max_x);
+        q.y = std::clamp(q.y, pb_.bounds.min_y, pb_.bounds.max_y);
+      }
+    } else {
+      q.x = pb_.bounds.min_x + rng_.u01() * (pb_.bounds.max_x - pb_.bounds.min_x);
+      q.y = pb_.bounds.min_y + rng_.u01() * (pb_.bounds.max_y - pb_.bounds.min_y);
+    }
+    const int near = grid_.nearest(q);
+    const Vec2 pn = nodes_[near].p;
+    const double d = norm(q - pn);
+    if (d < 1e-9) return;
+    const Vec2 xnew = d > pr_.step ? pn + (pr_.step / d) * (q - pn) : q;
+    // A goal sample that reaches the goal is not a node: it asks the goal's neighbours for edges.
+    if (norm2(xnew - pb_.goal.p) < 1e-12) {
+      grid_.within(pb_.goal.p, pr_.step, nbh_);
+      for (const auto& [d2, j] : nbh_) {
+        (void)d2;
+        if (!nodes_[j].goal_edge) try_goal(j);
+      }
+      update_best();
+      return;
+    }
+    neighbours(xnew, near);
+    const double fixed_new = m_.fixed_term(xnew);
+    // Choose parent: candidates sorted by cost, checked lazily (first valid wins).
+    cand_.clear();
+    for (const auto& [d2, j] : nbh_) {
+      const Node& a = nodes_[j];
+      const double len = std::sqrt(d2);
+      if (len < 1e-9) return;  // duplicate of an existing node
+      const Vec2 seg = xnew - a.p;
+      if (!m_.turn_ok(a.dir, seg, len, j == 0)) {
+        ++rejects_[Model::kTurn];
+        continue;
+      }
+      const double tb = (a.len + len) * inv_speed();
+      cand_.push_back({a.cost + m_.edge_cost(a.dir, j == 0, seg, len, fixed_new, xnew, tb), len, j});
+    }
+    std::sort(cand_.begin(), cand_.end(), [](const Cand& x, const Cand& y) {
+      return x.cost < y.cost || (x.cost == y.cost && x.idx < y.idx);
+    });
+    int parent = -1;
+    double parent_cost = 0, parent_len = 0;
+    for (const Cand& c : cand_) {
+      const Node& a = nodes_[c.idx];
+      ++st_.edge_checks;
+      const auto r = edge_reject(a.p, a.len * inv_speed(), xnew, c.len);
+      if (r != Model::kOkEdge) {
+        ++rejects_[r];
+        continue;
+      }
+      if (!fixed_clear(c.idx, a.p, xnew)) {
+        ++rejects_[Model::kFixed];
+        continue;
+      }
+      parent = c.idx;
+      parent_cost = c.cost;
+      parent_len = c.len;
+      break;
+    }
+    if (parent < 0) return;
+    Node n;
+    n.p = xnew;
+    n.dir = (1.0 / parent_len) * (xnew - nodes_[parent].p);
+    n.fixed = fixed_new;
+    n.cost = parent_cost;
+    n.len = nodes_[parent].len + parent_len;
+    n.parent = parent;
+    const int ni = add_node(n);
+    // Rewire (§3): the new node as parent of its neighbours.
+    for (const auto& [d2, j] : nbh_) {
+      if (j == parent || j == 0) continue;
+      rewire(ni, j, std::sqrt(d2));
+    }
+    try_goal(ni);
+    update_best();
+  }
+
+  double best_cost() const { return snap_cost_; }
+  bool solved() const { return snap_cost_ < kInf; }
+  const std::vector<Vec2>& best_path() const { return snap_; }
+  int size() const { return static_cast<int>(nodes_.size()); }
+  bool best_is_compliant() const { return snap_compliant_; }
+  const uint64_t* rejects() const { return rejects_; }
+  int goal_attempts() const { return goal_attempts_; }
+  double closest_to_goal() const { return closest_goal_; }
+
+ private:
+  struct Node {
+    Vec2 p, dir;
+    double cost = 0, len = 0, fixed = 0, goal_cost = kInf;
+    int parent = -1, first_child = -1, next_sibling = -1;
+    bool goal_edge = false;
+  };
+  struct Cand {
+    double cost, len;
+    int idx;
+  };
+
+  double inv_speed() const { return 1.0 / pb_.speed; }
+  bool in_bounds(Vec2 p) const {
+    return p.x >= pb_.bounds.min_x && p.x <= pb_.bounds.max_x && p.y >= pb_.bounds.min_y && p.y <= pb_.bounds.max_y;
+  }
+
+  int add_node(const Node& n) {
+    const int i = static_cast<int>(nodes_.size());
+    nodes_.push_back(n);
+    if (n.parent >= 0) link(n.parent, i);
+    grid_.add(n.p);
+    fixed_cache_.push_back(0);
+    return i;
+  }
+  void link(int parent, int child) {
+    nodes_[child].parent = parent;
+    nodes_[child].next_sibling = nodes_[parent].first_child;
+    nodes_[parent].first_child = child;
+  }
+  void unlink(int child) {
+    const int p = nodes_[child].parent;
+    int* slot = &nodes_[p].first_child;
+    while (*slot != child) slot = &nodes_[*slot].next_sibling;
+    *slot = nodes_[child].next_sibling;
+    nodes_[child].next_sibling = -1;
+  }
+
+  void neighbours(Vec2 x, int near) {
+    const double n = static_cast<double>(nodes_.size());
+    if (pr_.k_nearest) {
+      const int k = static_cast<int>(std::ceil(k_rrt_ * std::log(n + 1.0)));
+      grid_.k_nearest(x, k, nbh_);
+    } else {
+      const double card = n + 1.0;
+      const double r = std::min(pr_.step, r_rrt_ * std::sqrt(std::log(card) / card));
+      grid_.within(x, r, nbh_);
+    }
+    bool has_near = false;
+    for (const auto& e : nbh_) has_near = has_near || e.second == near;
+    if (!has_near) nbh_.emplace_back(norm2(x - nodes_[near].p), near);
+    // The neighbour set arrives in heap / cell order: sort for a deterministic, readable order.
+    std::sort(nbh_.begin(), nbh_.end());
+    // fixed_cache_[j]: 0 unknown, 1 clear, 2 blocked for the segment j <-> current new point.
+    for (const auto& e : nbh_) fixed_cache_[e.second] = 0;
+  }
+
+  bool fixed_clear(int j, Vec2 a, Vec2 b) {
+    if (fixed_cache_[j] == 0) fixed_cache_[j] = m_.fixed().segment_clear(a, b, pr_.safety_distance) ? 1 : 2;
+    return fixed_cache_[j] == 1;
+  }
+
+  Model::Reject edge_reject(Vec2 a, double ta, Vec2 b, double len) const {
+    return m_.moving_ok(a, ta, b, len, colreg);
+  }
+
+  // Tries the edge node -> goal (heading tolerance, turn, targets, COLREG, fixed).
+  void try_goal(int i) {
+    Node& a = nodes_[i];
+    const Vec2 seg = pb_.goal.p - a.p;
+    const double len2 = norm2(seg);
+    closest_goal_ = std::min(closest_goal_, std::sqrt(len2));
+    if (len2 > pr_.step * pr_.step) return;
+    ++goal_attempts_;
+    const double len = std::sqrt(len2);
+    if (len < 1e-9) return;
+    if (!m_.goal_heading_ok(seg)) {
+      ++rejects_[Model::kGoalHeading];
+      return;
+    }
+    if (!m_.turn_ok(a.dir, seg, len, i == 0)) {
+      ++rejects_[Model::kTurn];
+      return;
+    }
+    const double ta = a.len * inv_speed();
+    ++st_.edge_checks;
+    const auto r = edge_reject(a.p, ta, pb_.goal.p, len);
+    if (r != Model::kOkEdge) {
+      ++rejects_[r];
+      return;
+    }
+    if (!m_.fixed().segment_clear(a.p, pb_.goal.p, pr_.safety_distance)) {
+      ++rejects_[Model::kFixed];
+      return;
+    }
+    a.goal_edge = true;
+    a.goal_cost = m_.edge_cost(a.dir, i == 0, seg, len, goal_fixed_, pb_.goal.p, (a.len + len) * inv_speed());
+    goal_nodes_.push_back(i);
+    goal_dirty_ = true;
+  }
+
+  // x_new (index s) as the new parent of node j at distance len (rewiring, §3).
+  void rewire(int s, int j, double len) {
+    const Node& a = nodes_[s];
+    Node& b = nodes_[j];
+    const Vec2 seg = b.p - a.p;
+    const double tb = (a.len + len) * inv_speed();
+    const double new_cost = a.cost + m_.edge_cost(a.dir, false, seg, len, b.fixed, b.p, tb);
+    if (!(new_cost < b.cost - 1e-12 * std::max(1.0, std::fabs(b.cost)))) return;
+    if (!m_.turn_ok(a.dir, seg, len, false)) return;
+    ++st_.edge_checks;
+    if (edge_reject(a.p, a.len * inv_speed(), b.p, len) != Model::kOkEdge) return;
+    if (!fixed_clear(j, a.p, b.p)) return;
+    const Vec2 new_dir = (1.0 / len) * seg;
+    const double new_len = a.len + len;
+    // Re-validate and re-cost the subtree of j under its new time and incoming direction.
+    upd_.clear();
+    upd_.push_back({j, new_cost, new_len, 0.0});
+    const bool uniform = !m_.has_targets() && pr_.gamma_s == 0.0;  // costs shift by one delta
+    const bool need_turn = m_.turn_limited();
+    const bool need_check = m_.has_targets() || need_turn;
+    if (uniform && !need_check) {
+      apply_uniform(j, new_cost - b.cost, new_len - b.len, new_dir, s);
+      return;
+    }
+    for (size_t k = 0; k < upd_.size(); ++k) {
+      const int mi = upd_[k].idx;
+      const Node& mnode = nodes_[mi];
+      const Vec2 mdir = mi == j ? new_dir : mnode.dir;
+      const double tm = upd_[k].len * inv_speed();
+      if (mnode.goal_edge) {
+        const Vec2 gs = pb_.goal.p - mnode.p;
+        const double gl = norm(gs);
+        if (mi == j && !m_.turn_ok(mdir, gs, gl, false)) return;
+        if (m_.has_targets() && edge_reject(mnode.p, tm, pb_.goal.p, gl) != Model::kOkEdge) return;
+        upd_[k].goal_cost = m_.edge_cost(mdir, false, gs, gl, goal_fixed_, pb_.goal.p, (upd_[k].len + gl) * inv_speed());
+      }
+      for (int c = mnode.first_child; c >= 0; c = nodes_[c].next_sibling) {
+        const Node& cn = nodes_[c];
+        const Vec2 cs = cn.p - mnode.p;
+        const double cl = norm(cs);
+        if (mi == j && !m_.turn_ok(mdir, cs, cl, false)) return;
+        if (m_.has_targets() && edge_reject(mnode.p, tm, cn.p, cl) != Model::kOkEdge) return;
+        const double cc = uniform ? cn.cost + (new_cost - b.cost)
+                                  : upd_[k].cost + m_.edge_cost(mdir, false, cs, cl, cn.fixed, cn.p,
+                                                                (upd_[k].len + cl) * inv_speed());
+        upd_.push_back({c, cc, upd_[k].len + cl, 0.0});
+      }
+    }
+    // Commit.
+    ++st_.rewires;
+    unlink(j);
+    link(s, j);
+    nodes_[j].dir = new_dir;
+    for (const Upd& u : upd_) {
+      Node& n = nodes_[u.idx];
+      n.cost = u.cost;
+      n.len = u.len;
+      if (n.goal_edge) {
+        n.goal_cost = u.goal_cost;
+        goal_dirty_ = true;
+      }
+    }
+  }
+
+  void apply_uniform(int j, double dcost, double dlen, Vec2 new_dir, int s) {
+    ++st_.rewires;
+    unlink(j);
+    link(s, j);
+    nodes_[j].dir = new_dir;
+    // Iterative DFS over the subtree: same cost and length shift everywhere (no targets, no eq. 6).
+    stack_.clear();
+    stack_.push_back(j);
+    while (!stack_.empty()) {
+      const int mi = stack_.back();
+      stack_.pop_back();
+      Node& n = nodes_[mi];
+      n.cost += dcost;
+      n.len += dlen;
+      if (n.goal_edge) goal_dirty_ = true;
+      for (int c = n.first_child; c >= 0; c = nodes_[c].next_sibling) stack_.push_back(c);
+    }
+  }
+
+  void update_best() {
+    if (!goal_dirty_) return;
+    goal_dirty_ = false;
+    double best = kInf;
+    int bi = -1;
+    for (int i : goal_nodes_) {
+      const double c = nodes_[i].cost + nodes_[i].goal_cost;
+      if (c < best) {
+        best = c;
+        bi = i;
+      }
+    }
+    best_node_ = bi;
+    if (bi >= 0 && best < snap_cost_) {
+      snap_cost_ = best;
+      snap_compliant_ = colreg;
+      snap_.clear();
+      for (int i = bi; i >= 0; i = nodes_[i].parent) snap_.push_back(nodes_[i].p);
+      std::reverse(snap_.begin(), snap_.end());
+      snap_.push_back(pb_.goal.p);
+      if (st_.first_solution_iteration < 0) {
+        st_.first_solution_iteration = st_.iterations;
+        if (hooks_.elapsed) st_.first_solution_time = hooks_.elapsed();
+      }
+    }
+  }
+
+  struct Upd {
+    int idx;
+    double cost, len, goal_cost;
+  };
+
+  const Model& m_;
+  const Problem& pb_;
+  const Params& pr_;
+  Stats& st_;
+  const Hooks& hooks_;
+  Rng rng_;
+  detail::NodeGrid grid_;
+  std::vector<Node> nodes_;
+  std::vector<uint8_t> fixed_cache_;
+  std::vector<std::pair<double, int>> nbh_;
+  std::vector<Cand> cand_;
+  std::vector<Upd> upd_;
+  std::vector<int> stack_;
+  std::vector<int> goal_nodes_;
+  bool goal_dirty_ = false;
+  bool approach_ = false;
+  int best_node_ = -1;
+  double snap_cost_ = kInf;
+  bool snap_compliant_ = false;
+  std::vector<Vec2> snap_;
+  double k_rrt_ = 0, r_rrt_ = 0, goal_fixed_ = 0;
+  uint64_t rejects_[Model::kRejectCount] = {};
+  int goal_attempts_ = 0;
+  double closest_goal_ = kInf;
+};
+
+std::string validate_problem(const Problem& pb, const Params& pr) {
+  if (!finite(pb.start)) return "start position is not finite";
+  if (!std::isfinite(pb.heading)) return "own heading is not finite";
+  if (!std::isfinite(pb.speed) || pb.speed <= 0.0) return "own speed must be finite and > 0 (got " + fmt(pb.speed) + ")";
+  if (!finite(pb.goal.p)) return "goal position is not finite";
+  if (std::isinf(pb.goal.heading)) return "goal heading is infinite (NaN means any heading)";
+  if (!std::isnan(pb.goal.heading) && !(pb.goal.heading_tolerance >= 0.0))
+    return "goal heading tolerance must be >= 0 (got " + fmt(pb.goal.heading_tolerance) + ")";
+  const Bounds& b = pb.bounds;
+  if (!std::isfinite(b.min_x) || !std::isfinite(b.min_y) || !std::isfinite(b.max_x) || !std::isfinite(b.max_y) ||
+      !(b.max_x > b.min_x) || !(b.max_y > b.min_y))
+    return "sampling bounds are empty or not finite";
+  auto inside = [&](Vec2 p) { return p.x >= b.min_x && p.x <= b.max_x && p.y >= b.min_y && p.y <= b.max_y; };
+  if (!inside(pb.start)) return "start lies outside the sampling bounds";
+  if (!inside(pb.goal.p)) return "goal lies outside the sampling bounds";
+  if (pb.targets.size() > 10000) return "too many targets (" + std::to_string(pb.targets.size()) + " > 10000)";
+  for (size_t i = 0; i < pb.targets.size(); ++i) {
+    const Target& t = pb.targets[i];
+    if (!finite(t.p) || !finite(t.v))
+      return "target " + std::to_string(i) + " (id " + std::to_string(t.id) + ") has a non-finite position or velocity";
+  }
+  if (pb.fixed) {
+    const double ds = pb.fixed->nearest(pb.start);
+    if (ds < pr.safety_distance || ds <= 0.0)
+      return "start is within the safety distance of a fixed obstacle (" + fmt(ds) + " m < " + fmt(pr.safety_distance) + " m)";
+    const double dg = pb.fixed->nearest(pb.goal.p);
+    if (dg < pr.safety_distance || dg <= 0.0)
+      return "goal is inside or within the safety distance of a fixed obstacle (" + fmt(dg) + " m < " +
+             fmt(pr.safety_distance) + " m)";
+  }
+  for (size_t i = 0; i < pb.targets.size(); ++i) {
+    const double d = norm(pb.targets[i].p - pb.start);
+    if (d < pr.safety_distance)
+      return "start is within the safety distance of target " + std::to_string(i) + " (id " +
+             std::to_string(pb.targets[i].id) + "): " + fmt(d) + " m < " + fmt(pr.safety_distance) + " m";
+  }
+  return "";
+}
+
+// Waypoints from the previous plan still ahead of the new start.
+std::vector<Vec2> warm_tail(const std::vector<Vec2>& warm, Vec2 start) {
+  if (warm.size() < 2) return {};
+  size_t best_leg = 0;
+  double bd = kInf;
+  for (size_t i = 0; i + 1 < warm.size(); ++i) {
+    const double d = point_segment_dist2(start, warm[i], warm[i + 1]);
+    if (d < bd) {
+      bd = d;
+      best_leg = i;
+    }
+  }
+  return std::vector<Vec2>(warm.begin() + static_cast<long>(best_leg) + 1, warm.end());
+}
+
+}  // namespace
+
+Result plan(const Problem& problem, const Params& params, const Hooks& hooks, const std::vector<Vec2>& warm) {
+  Result res;
+  const double t0 = hooks.elapsed ? hooks.elapsed() : 0.0;
+  try {
+    params.validate();
+  } catch (const std::invalid_argument& e) {
+    res.status = Status::kInvalidInput;
+    res.reason = e.what();
+    return res;
+  }
+  res.reason = validate_problem(problem, params);
+  if (!res.reason.empty()) {
+    res.status = Status::kInvalidInput;
+    return res;
+  }
+  const Model model(problem, params);
+  if (norm(problem.goal.p - problem.start) < 1e-6) {
+    res.status = Status::kOk;
+    res.colreg_compliant = true;
+    res.path = {{problem.start, 0.0}};
+    return res;
+  }
+  Tree tree(model, problem, params, res.stats, hooks);
+  tree.colreg = problem.colreg;
+  if (!warm.empty()) res.stats.warm_started = tree.seed_chain(warm_tail(warm, problem.start));
+  const int share_iter = static_cast<int>(std::ceil(params.compliant_share * params.max_iterations));
+  const double share_time = params.compliant_share * params.time_budget;
+  while (res.stats.iterations < params.max_iterations) {
+    const double el = hooks.elapsed ? hooks.elapsed() - t0 : 0.0;
+    if (hooks.elapsed && el >= params.time_budget) break;
+    if (hooks.stop && hooks.stop()) break;
+    if (tree.colreg && !tree.solved() && (res.stats.iterations >= share_iter || (hooks.elapsed && el >= share_time))) {
+      res.stats.iterations_compliant = res.stats.iterations;
+      tree.colreg = false;  // §6: relax; the compliant tree stays valid under the weaker constraint
+    }
+    tree.iterate();
+    if (hooks.progress) hooks.progress(res.stats.iterations, tree.best_cost());
+  }
+  if (tree.colreg) res.stats.iterations_compliant = res.stats.iterations;
+  res.stats.nodes = tree.size();
+  res.stats.planning_time = hooks.elapsed ? hooks.elapsed() - t0 : 0.0;
+  if (res.stats.first_solution_time >= 0) res.stats.first_solution_time -= t0;
+  if (!tree.solved()) {
+    const uint64_t* r = tree.rejects();
+    std::ostringstream os;
+    os << "no path within " << res.stats.iterations << " iterations";
+    if (hooks.elapsed) os << " / " << fmt(res.stats.planning_time) << " s";
+    os << " (" << tree.size() << " nodes; ";
+    if (tree.goal_attempts() == 0)
+      os << "the tree never came within one step of the goal, closest " << fmt(tree.closest_to_goal()) << " m";
+    else
+      os << tree.goal_attempts() << " goal connections tried";
+    os << "; edges rejected: fixed obstacles " << r[Model::kFixed] << ", targets " << r[Model::kTarget] << ", turn "
+       << r[Model::kTurn] << ", COLREG " << r[Model::kColreg] << ", arrival heading " << r[Model::kGoalHeading] << ")";
+    res.status = Status::kNoPath;
+    res.reason = os.str();
+    return res;
+  }
+  std::vector<Vec2> pts = tree.best_path();
+  res.relaxed = problem.colreg && !tree.best_is_compliant();
+  res.status = res.relaxed ? Status::kRelaxed : Status::kOk;
+  if (res.relaxed) res.reason = "no COLREG-compliant path within the compliant budget share; constraint relaxed";
+  res.colreg_compliant = check_path(problem, params, pts, true).empty();
+  res.cost = path_cost(problem, params, pts);
+  double len = 0.0;
+  res.path.push_back({pts[0], 0.0});
+  for (size_t i = 1; i < pts.size(); ++i) {
+    len += norm(pts[i] - pts[i - 1]);
+    res.path.push_back({pts[i], len / problem.speed});
+  }
+  return res;
+}
+
+std::string check_path(const Problem& pb, const Params& pr, const std::vector<Vec2>& path, bool colreg) {
+  if (path.size() < 2) return "path has fewer than 2 waypoints";
+  const Model m(pb, pr);
+  Vec2 dir{std::cos(pb.heading), std::sin(pb.heading)};
+  double len_acc = 0.0;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const Vec2 a = path[i], b = path[i + 1];
+    const Vec2 seg = b - a;
+    const double len = norm(seg);
+    const std::string leg = "leg " + std::to_string(i) + ": ";
+    if (!(len > 0.0)) return leg + "zero length";
+    if (!m.turn_ok(dir, seg, len, i == 0)) return leg + "turning angle exceeds max_turn (eq. 2)";
+    if (!m.fixed().segment_clear(a, b, pr.safety_distance)) return leg + "closer than d_safety to a fixed obstacle";
+    const auto r = m.moving_ok(a, len_acc / pb.speed, b, len, colreg);
+    if (r == Model::kTarget) return leg + "closer than d_safety to a target (eq. 3-4)";
+    if (r == Model::kColreg) return leg + "not COLREG-compliant (§5)";
+    dir = (1.0 / len) * seg;
+    len_acc += len;
+  }
+  if (!m.goal_heading_ok(path.back() - path[path.size() - 2])) return "arrival heading outside the tolerance";
+  return "";
+}
+
+CostTerms path_cost(const Problem& pb, const Params& pr, const std::vector<Vec2>& path) {
+  CostTerms c;
+  if (path.empty()) return c;
+  const Model m(pb, pr);
+  Vec2 dir{std::cos(pb.heading), std::sin(pb.heading)};
+  double len_acc = 0.0;
+  c.fixed += m.fixed_term(path[0]);
+  c.moving += m.moving_term(path[0], 0.0);
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vec2 seg = path[i] - path[i - 1];
+    const double len = norm(seg);
+    c.smooth += m.steer_term(dir, seg, len, i == 1);
+    len_acc += len;
+    c.length += pr.gamma_l * len;
+    c.fixed += m.fixed_term(path[i]);
+    c.moving += m.moving_term(path[i], len_acc / pb.speed);
+    if (len > 0) dir = (1.0 / len) * seg;
+  }
+  c.total = c.smooth + c.fixed + c.moving + c.length;
+  return c;
+}
+
+}  // namespace mpgc::opp

@@ -1,0 +1,78 @@
+// Index and obstacle queries against brute force.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "mpgc/opp/node_grid.hpp"
+#include "mpgc/opp/obstacles.hpp"
+
+namespace opp = mpgc::opp;
+
+namespace {
+double u(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * (1.0 / 9007199254740992.0); }
+}  // namespace
+
+TEST(NodeGrid, NearestAndKNearestMatchBruteForce) {
+  std::mt19937_64 g(3);
+  opp::detail::NodeGrid grid;
+  grid.reset(0, 0, 100, 50);
+  std::vector<opp::Vec2> pts;
+  std::vector<std::pair<double, int>> out;
+  for (int n = 0; n < 3000; ++n) {
+    const opp::Vec2 p{u(g) * 100, u(g) * 50};
+    pts.push_back(p);
+    grid.add(p);
+    if (n % 97 != 0) continue;
+    for (int q = 0; q < 20; ++q) {
+      const opp::Vec2 x{u(g) * 100, u(g) * 50};
+      std::vector<double> d;
+      for (const auto& pp : pts) d.push_back(opp::norm2(pp - x));
+      const int nn = grid.nearest(x);
+      ASSERT_DOUBLE_EQ(d[nn], *std::min_element(d.begin(), d.end()));
+      const int k = 1 + q;
+      grid.k_nearest(x, k, out);
+      ASSERT_EQ(static_cast<int>(out.size()), std::min<int>(k, static_cast<int>(pts.size())));
+      std::vector<double> ds = d;
+      std::sort(ds.begin(), ds.end());
+      double worst = 0;
+      for (const auto& e : out) worst = std::max(worst, e.first);
+      ASSERT_DOUBLE_EQ(worst, ds[out.size() - 1]);
+      grid.within(x, 7.0, out);
+      ASSERT_EQ(out.size(), static_cast<size_t>(std::count_if(d.begin(), d.end(), [](double v) { return v <= 49.0; })));
+    }
+  }
+}
+
+TEST(PointObstacles, SegmentClearMatchesBruteForce) {
+  std::mt19937_64 g(5);
+  std::vector<opp::Vec2> pts;
+  for (int i = 0; i < 2000; ++i) pts.push_back({u(g) * 1000, u(g) * 1000});
+  opp::PointObstacles obs(pts);
+  for (int q = 0; q < 2000; ++q) {
+    const opp::Vec2 a{u(g) * 1000, u(g) * 1000};
+    const opp::Vec2 b = a + opp::Vec2{(u(g) - 0.5) * 200, (u(g) - 0.5) * 200};
+    const double d = u(g) * 30;
+    double best = 1e300, bn = 1e300;
+    for (const auto& p : pts) {
+      best = std::min(best, opp::point_segment_dist2(p, a, b));
+      bn = std::min(bn, opp::norm2(p - a));
+    }
+    ASSERT_EQ(obs.segment_clear(a, b, d), best >= d * d) << q;
+    ASSERT_DOUBLE_EQ(obs.nearest(a), std::sqrt(bn));
+  }
+}
+
+TEST(Obstacles, RejectNonFiniteInput) {
+  EXPECT_THROW(opp::PointObstacles({{0, 0}, {std::nan(""), 1}}), std::invalid_argument);
+  EXPECT_THROW(opp::DiscObstacles({{{0, 0}, -1}}), std::invalid_argument);
+  opp::PointObstacles empty({});
+  EXPECT_TRUE(std::isinf(empty.nearest({1, 2})));
+  EXPECT_TRUE(empty.segment_clear({0, 0}, {1, 1}, 5));
+}
+
+TEST(Geometry, MinDistanceOfLinearMotion) {
+  // Relative start (10, 0), closing at 1 m/s along x: closest 0 at tau = 10, but clipped at T.
+  EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {-1, 0}, 20), 9.0);
+  EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {-1, 0}, 4), 36.0 + 9.0);
+  EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {1, 0}, 4), 109.0);
+}
