@@ -1,0 +1,259 @@
+// mpgc_obstacle_manager: chart(s) -> obstacles/fixed (latched, the region around the own ship),
+// sa/tracks -> obstacles/moving (every cycle). Seed 000 §2 "obstacle management", §4.2.
+#include <sys/stat.h>
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "mpgc/geo/angles.hpp"
+#include "mpgc/msg/nav.hpp"
+#include "mpgc/msg/obstacles.hpp"
+#include "mpgc/msg/tracks.hpp"
+#include "mpgc/obstacle_manager/chart.hpp"
+#include "mpgc/obstacle_manager/manager.hpp"
+#include "mpgc/obstacle_manager/msg_convert.hpp"
+#include "mpgc/runtime/component.hpp"
+#include "mpgc/topics.hpp"
+
+namespace om = mpgc::obstacle_manager;
+namespace msg = mpgc::msg;
+using mpgc::geo::deg2rad;
+
+namespace {
+
+struct Params {
+  std::string files;         // chart files, comma separated (.000 S-57 cells, .geojson)
+  std::string shapes;        // inline NED shapes (see om::add_shapes)
+  double origin_lat = 0;     // [deg] NED origin, must be the run's origin
+  double origin_lon = 0;     // [deg]
+  double watch_period = 5;   // [s] chart file change check; 0 = never
+  double moving_period = 0.5;  // [s] obstacles/moving period
+  double origin_tolerance = 100;  // [m] NavState x,y vs lat/lon through our origin
+  om::ChartParams chart;
+  om::RegionParams region;
+  om::DomainParams domain;
+};
+
+void declare(mpgc::rt::ParamSet& ps, Params& p) {
+  ps.add("chart.files", &p.files, "", "chart files, comma separated: S-57 cells (*.000, updates applied) and GeoJSON; "
+                                      "relative paths are tried against $MPGC_SHARED_DATA too");
+  ps.add("chart.shapes", &p.shapes, "", "inline NED shapes: 'circle N E R; polygon N E N E ...; line N E ...; point N E'");
+  ps.add("chart.origin_lat", &p.origin_lat, 0.0, "deg", -90.0, 90.0, "latitude of the NED origin (the run's origin)");
+  ps.add("chart.origin_lon", &p.origin_lon, 0.0, "deg", -180.0, 180.0, "longitude of the NED origin");
+  ps.add("chart.spacing", &p.chart.spacing, 20.0, "m", 0.5, 10000.0, "densification spacing of boundary points");
+  ps.add("chart.draught", &p.chart.draught, 5.0, "m", 0.0, 50.0, "depth areas shallower than this are obstacles");
+  ps.add("chart.depth_areas", &p.chart.depth_areas, true, "treat shallow depth areas (DEPARE) as obstacles");
+  ps.add("chart.watch_period", &p.watch_period, 5.0, "s", 0.0, 3600.0, "check chart files for changes; 0 = never");
+  ps.add("region.half_size", &p.region.half_size, 10000.0, "m", 0.0, 1e6,
+         "half side of the published square around the own ship; 0 = whole chart at once");
+  ps.add("region.republish_distance", &p.region.republish_distance, 2000.0, "m", 1.0, 1e6,
+         "republish when the own ship moved this far from the last centre");
+  ps.add("moving.period", &p.moving_period, 0.5, "s", 0.01, 60.0, "obstacles/moving publication period");
+  ps.add("moving.min_radius", &p.domain.min_radius, 50.0, "m", 0.0, 1e4, "ship-domain radius when the length is unknown");
+  ps.add("moving.lengths", &p.domain.lengths, 2.0, "-", 0.0, 100.0, "ship-domain radius in target lengths");
+  ps.add("moving.max_speed", &p.domain.max_speed, 40.0, "m/s", 1.0, 200.0, "faster tracks are rejected");
+  ps.add("moving.tentative", &p.domain.tentative, false, "also pass on tentative tracks");
+  ps.add("nav.origin_tolerance", &p.origin_tolerance, 100.0, "m", 0.0, 1e6,
+         "warn when NavState x,y and lat/lon disagree by more than this through chart.origin");
+}
+
+std::vector<std::string> split_files(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string f;
+  while (std::getline(ss, f, ',')) {
+    const auto a = f.find_first_not_of(" \t"), b = f.find_last_not_of(" \t");
+    if (a == std::string::npos) continue;
+    f = f.substr(a, b - a + 1);
+    struct stat st {};
+    if (f[0] != '/' && ::stat(f.c_str(), &st) != 0)
+      if (const char* d = std::getenv("MPGC_SHARED_DATA")) {
+        const std::string alt = std::string(d) + "/" + f;
+        if (::stat(alt.c_str(), &st) == 0) f = alt;
+      }
+    out.push_back(f);
+  }
+  return out;
+}
+
+// Modification times of the chart files and their S-57 updates (.001 ... beside a .000).
+std::string chart_stamp(const std::vector<std::string>& files) {
+  std::string s;
+  for (const auto& f : files) {
+    struct stat st {};
+    if (::stat(f.c_str(), &st) == 0) s += std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + ";";
+    if (f.size() > 4 && f.compare(f.size() - 4, 4, ".000") == 0)
+      for (int k = 1; k < 1000; ++k) {
+        char ext[8];
+        std::snprintf(ext, sizeof ext, ".%03d", k);
+        const std::string u = f.substr(0, f.size() - 4) + ext;
+        if (::stat(u.c_str(), &st) != 0) break;
+        s += std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec) + ";";
+      }
+  }
+  return s;
+}
+
+om::ObstacleSet load_chart(const Params& p, const mpgc::geo::LocalNed& frame, const std::vector<std::string>& files) {
+  om::ChartBuilder b(frame, p.chart);
+  for (const auto& f : files) b.load_file(f);
+  om::add_shapes(b, p.shapes);
+  return b.take();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Params p;
+  mpgc::rt::ParamSet ps;
+  declare(ps, p);
+  return mpgc::rt::run_component("obstacle_manager", argc, argv, ps, [&p](mpgc::rt::Component& comp) {
+    // Callbacks outlive this function: they capture the component by pointer, the rest by value
+    // or through the shared state.
+    mpgc::rt::Component* c = &comp;
+    p.region.validate();
+    p.domain.validate();
+    const mpgc::geo::LocalNed frame({deg2rad(p.origin_lat), deg2rad(p.origin_lon)});
+    const auto files = split_files(p.files);
+
+    struct State {
+      om::ObstacleSet chart;
+      om::BoxNE bounds{0, 0, 0, 0};
+      std::string stamp;
+      om::RegionPolicy region;
+      std::optional<om::PointNE> own;
+      std::optional<msg::TrackList> tracks;
+      uint32_t version = 0;
+      bool origin_warned = false;
+    };
+    auto st = std::make_shared<State>(State{{}, {}, chart_stamp(files), om::RegionPolicy(p.region), {}, {}, 0, false});
+    auto set_chart = [st](om::ObstacleSet s) {
+      st->chart = std::move(s);
+      st->bounds = om::FixedObstacleMap({}, st->chart.polygons).bounds();
+      for (const auto& q : st->chart.points)
+        st->bounds = {std::min(st->bounds.min_x, q.x), std::min(st->bounds.min_y, q.y), std::max(st->bounds.max_x, q.x),
+                      std::max(st->bounds.max_y, q.y)};
+      st->region.chart_changed();
+    };
+    set_chart(load_chart(p, frame, files));
+    c->log().info("chart '{}': {} points, {} rings, {} features", p.files, st->chart.points.size(),
+                 st->chart.polygons.size(), st->chart.features.size());
+
+    auto* fixed_out = &c->publisher<msg::FixedObstacles>(mpgc::topics::kFixedObstacles, mpgc::dds::QosProfile::latched());
+    auto* moving_out = &c->publisher<msg::MovingObstacles>(mpgc::topics::kMovingObstacles, mpgc::dds::QosProfile::state());
+
+    auto publish_fixed = [c, &p, st, fixed_out](om::PointNE centre) {
+      const om::BoxNE box = st->region.publish(centre, st->bounds);
+      const om::ObstacleSet part = st->region.whole_chart() ? st->chart : om::crop(st->chart, box);
+      msg::FixedObstacles m;
+      m.header = c->header();
+      m.version = ++st->version;
+      m.chart = p.files + (p.shapes.empty() ? "" : " + inline shapes");
+      m.origin_lat = deg2rad(p.origin_lat);
+      m.origin_lon = deg2rad(p.origin_lon);
+      m.region_min_x = box.min_x;
+      m.region_min_y = box.min_y;
+      m.region_max_x = box.max_x;
+      m.region_max_y = box.max_y;
+      m.point_spacing = p.chart.spacing;
+      m.points = om::points_to_msg(part.points);
+      m.polygons.reserve(part.polygons.size());
+      for (const auto& g : part.polygons) m.polygons.push_back({g.feature_id, om::points_to_msg(g.ring)});
+      fixed_out->write(m);
+      c->count("fixed_published");
+      c->log().info("obstacles/fixed v{}: {} points, {} polygons in [{:.0f}, {:.0f}] x [{:.0f}, {:.0f}] m", m.version,
+                   m.points.size(), m.polygons.size(), box.min_x, box.max_x, box.min_y, box.max_y);
+    };
+
+    c->subscribe<msg::NavState>(
+        mpgc::topics::kOwnState, mpgc::dds::QosProfile::state(),
+        [c, &p, st, frame, publish_fixed](const msg::NavState& s) {
+          st->own = om::PointNE{s.x, s.y};
+          if (!st->origin_warned && std::isfinite(s.lat) && std::isfinite(s.lon) && (s.lat != 0.0 || s.lon != 0.0)) {
+            const auto q = frame.to_ned({s.lat, s.lon});
+            const double off = std::hypot(q.x - s.x, q.y - s.y);
+            if (off > p.origin_tolerance) {
+              c->count("origin_mismatch");
+              c->log().warn("nav/own_state x,y differs by {:.0f} m from its lat/lon through chart.origin: is "
+                           "chart.origin_lat/lon the run's origin?", off);
+              st->origin_warned = true;
+            }
+          }
+          if (st->region.needs_update(*st->own)) publish_fixed(*st->own);
+        },
+        [](const msg::NavState& s) -> std::string {
+          if (!(s.valid_mask & msg::NAV_POSITION_VALID)) return "position not valid";
+          if (!std::isfinite(s.x) || !std::isfinite(s.y)) return "position not finite";
+          return "";
+        });
+
+    c->subscribe<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(),
+                                [st](const msg::TrackList& t) { st->tracks = t; });
+
+    // The whole chart needs no own position: publish it at once for planners that start first.
+    if (st->region.whole_chart()) publish_fixed({0, 0});
+
+    c->every(p.moving_period, [c, &p, st, moving_out] {
+      msg::MovingObstacles m;
+      m.header = c->header();
+      if (st->tracks) {
+        m.t_valid_ns = st->tracks->header.stamp_ns;
+        for (const auto& t : st->tracks->tracks) {
+          om::TargetState ts;
+          ts.id = t.id;
+          ts.mmsi = t.mmsi;
+          ts.x = t.x;
+          ts.y = t.y;
+          ts.vx = t.vx;
+          ts.vy = t.vy;
+          ts.var_x = t.cov[0];
+          ts.var_y = t.cov[5];
+          ts.length = t.length;
+          ts.tentative = t.status == msg::TrackStatus::TRACK_TENTATIVE;
+          ts.deleted = t.status == msg::TrackStatus::TRACK_DELETED;
+          const std::string why = om::check_target(ts, p.domain);
+          if (why == "deleted" || why == "tentative") {
+            c->count("tracks_skipped_" + why);
+            continue;
+          }
+          if (!why.empty()) {
+            c->reject(mpgc::topics::kTracks, why);
+            continue;
+          }
+          const auto o = om::to_moving_obstacle(ts, p.domain);
+          msg::MovingObstacle mo;
+          mo.id = o.id;
+          mo.mmsi = o.mmsi;
+          mo.x = o.x;
+          mo.y = o.y;
+          mo.vx = o.vx;
+          mo.vy = o.vy;
+          mo.radius = o.radius;
+          mo.position_std = o.position_std;
+          m.obstacles.push_back(mo);
+        }
+      } else {
+        m.t_valid_ns = m.header.stamp_ns;  // no tracks yet: an empty, current list
+      }
+      moving_out->write(m);
+    });
+
+    if (p.watch_period > 0.0)
+      c->every(p.watch_period, [c, &p, st, frame, files, set_chart, publish_fixed] {
+        const std::string now = chart_stamp(files);
+        if (now == st->stamp) return;
+        st->stamp = now;
+        try {
+          set_chart(load_chart(p, frame, files));
+          c->count("chart_reloaded");
+          c->log().info("chart changed on disk: reloaded, {} points", st->chart.points.size());
+          if (st->own) publish_fixed(*st->own);
+          else if (st->region.whole_chart()) publish_fixed({0, 0});
+        } catch (const std::exception& e) {
+          c->reject("chart", std::string("reload failed, keeping the previous chart: ") + e.what());
+        }
+      });
+  });
+}

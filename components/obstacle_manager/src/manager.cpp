@@ -1,0 +1,117 @@
+#include "mpgc/obstacle_manager/manager.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace mpgc::obstacle_manager {
+
+namespace {
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r\n");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
+}
+}  // namespace
+
+void add_shapes(ChartBuilder& b, const std::string& spec) {
+  std::stringstream all(spec);
+  std::string item;
+  int k = 0;
+  while (std::getline(all, item, ';')) {
+    item = trim(item);
+    if (item.empty()) continue;
+    std::stringstream ss(item);
+    std::string kind;
+    ss >> kind;
+    const std::string name = "shape " + std::to_string(k++) + " (" + kind + ")";
+    std::vector<double> v;
+    std::string tok;
+    while (ss >> tok) {
+      try {
+        size_t used = 0;
+        v.push_back(std::stod(tok, &used));
+        if (used != tok.size()) throw std::invalid_argument(tok);
+      } catch (const std::exception&) {
+        throw ChartError(name + ": '" + tok + "' is not a number");
+      }
+    }
+    std::vector<PointNE> pts;
+    for (size_t i = 0; i + 1 < v.size(); i += 2) pts.push_back({v[i], v[i + 1]});
+    if (kind == "circle") {
+      if (v.size() != 3) throw ChartError(name + ": needs 'circle N E R', got " + std::to_string(v.size()) + " numbers");
+      b.add_circle({v[0], v[1]}, v[2], name);
+    } else if (kind == "polygon" || kind == "line" || kind == "point") {
+      if (v.size() % 2 != 0) throw ChartError(name + ": needs pairs N E, got " + std::to_string(v.size()) + " numbers");
+      if (kind == "polygon") b.add_polygon(pts, name);
+      if (kind == "line") b.add_line(pts, name);
+      if (kind == "point") {
+        if (pts.size() != 1) throw ChartError(name + ": needs 'point N E'");
+        b.add_point(pts[0], name);
+      }
+    } else {
+      throw ChartError(name + ": unknown shape '" + kind + "' (circle, polygon, line, point)");
+    }
+  }
+}
+
+void RegionParams::validate() const {
+  if (!std::isfinite(half_size) || half_size < 0.0)
+    throw std::invalid_argument("RegionParams.half_size = " + std::to_string(half_size) + " m must be >= 0");
+  if (!std::isfinite(republish_distance) || republish_distance <= 0.0 ||
+      (half_size > 0.0 && republish_distance >= half_size))
+    throw std::invalid_argument("RegionParams.republish_distance = " + std::to_string(republish_distance) +
+                                " m must be > 0 and below half_size");
+}
+
+RegionPolicy::RegionPolicy(RegionParams p) : p_(p) { p_.validate(); }
+
+bool RegionPolicy::needs_update(PointNE own) const {
+  if (dirty_ || !centre_) return true;
+  if (whole_chart()) return false;
+  return std::hypot(own.x - centre_->x, own.y - centre_->y) > p_.republish_distance;
+}
+
+BoxNE RegionPolicy::publish(PointNE own, const BoxNE& chart_bounds) {
+  centre_ = own;
+  dirty_ = false;
+  if (whole_chart()) return chart_bounds;
+  return {own.x - p_.half_size, own.y - p_.half_size, own.x + p_.half_size, own.y + p_.half_size};
+}
+
+void DomainParams::validate() const {
+  if (!std::isfinite(min_radius) || min_radius < 0.0) throw std::invalid_argument("DomainParams.min_radius must be >= 0");
+  if (!std::isfinite(lengths) || lengths < 0.0) throw std::invalid_argument("DomainParams.lengths must be >= 0");
+  if (!(max_speed > 0.0)) throw std::invalid_argument("DomainParams.max_speed must be > 0");
+  if (!(max_range > 0.0)) throw std::invalid_argument("DomainParams.max_range must be > 0");
+}
+
+std::string check_target(const TargetState& t, const DomainParams& p) {
+  if (t.deleted) return "deleted";
+  if (t.tentative && !p.tentative) return "tentative";
+  for (double v : {t.x, t.y, t.vx, t.vy, t.var_x, t.var_y})
+    if (!std::isfinite(v)) return "track " + std::to_string(t.id) + ": state is not finite";
+  if (t.var_x < 0.0 || t.var_y < 0.0) return "track " + std::to_string(t.id) + ": negative position variance";
+  const double speed = std::hypot(t.vx, t.vy);
+  if (speed > p.max_speed)
+    return "track " + std::to_string(t.id) + ": speed " + std::to_string(speed) + " m/s > max " + std::to_string(p.max_speed);
+  if (std::hypot(t.x, t.y) > p.max_range) return "track " + std::to_string(t.id) + ": position beyond max_range";
+  if (!std::isnan(t.length) && !(t.length > 0.0 && t.length < 1000.0))
+    return "track " + std::to_string(t.id) + ": length " + std::to_string(t.length) + " m out of range";
+  return "";
+}
+
+MovingObstacleOut to_moving_obstacle(const TargetState& t, const DomainParams& p) {
+  MovingObstacleOut o;
+  o.id = t.id;
+  o.mmsi = t.mmsi;
+  o.x = t.x;
+  o.y = t.y;
+  o.vx = t.vx;
+  o.vy = t.vy;
+  o.radius = std::isnan(t.length) ? p.min_radius : std::max(p.min_radius, p.lengths * t.length);
+  o.position_std = std::sqrt(std::max(t.var_x, t.var_y));
+  return o;
+}
+
+}  // namespace mpgc::obstacle_manager

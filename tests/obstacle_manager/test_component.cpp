@@ -1,0 +1,140 @@
+// Integration over DDS (own domain, loopback): the real mpgc_obstacle_manager process loads the
+// Annapolis crop; a reader that joins late still gets obstacles/fixed (transient-local); tracks
+// come back as obstacles/moving.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "mpgc/dds/dds.hpp"
+#include "mpgc/msg/nav.hpp"
+#include "mpgc/msg/obstacles.hpp"
+#include "mpgc/msg/tracks.hpp"
+#include "mpgc/obstacle_manager/msg_convert.hpp"
+#include "mpgc/testing.hpp"
+#include "mpgc/topics.hpp"
+
+extern char** environ;
+
+namespace {
+
+class Process {
+ public:
+  explicit Process(std::vector<std::string> args) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
+  }
+  ~Process() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      int st = 0;
+      for (int i = 0; i < 100 && waitpid(pid_, &st, WNOHANG) == 0; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (waitpid(pid_, &st, WNOHANG) == 0) {
+        kill(pid_, SIGKILL);
+        waitpid(pid_, &st, 0);
+      }
+    }
+  }
+  bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+template <class T, class Pred>
+bool wait_for(mpgc::dds::Reader<T>& r, T& out, Pred pred, double timeout_s) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < end) {
+    for (auto& s : r.take())
+      if (pred(s.value)) {
+        out = s.value;
+        return true;
+      }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(ObstacleManagerProcess, LateJoinerGetsFixedObstaclesAndTracksBecomeMoving) {
+  const int domain = mpgc::testing::unique_domain();
+  Process proc({mpgc::testing::bin_dir() + "/mpgc_obstacle_manager", "--domain", std::to_string(domain), "--set",
+                "chart.files=" + mpgc::testing::shared_data("chart/crop_annapolis_LNDARE.geojson"), "--set",
+                "chart.origin_lat=38.965", "--set", "chart.origin_lon=-76.45", "--set", "region.half_size=0",
+                "--set", "chart.shapes=circle 0 0 100", "--set", "moving.period=0.1", "--log-level", "warn"});
+  mpgc::dds::Participant part(static_cast<uint32_t>(domain));
+  // Join late: the component has loaded the chart and published before this reader exists.
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  ASSERT_TRUE(proc.running());
+  mpgc::dds::Topic<mpgc::msg::FixedObstacles> fixed_topic(part, mpgc::topics::kFixedObstacles);
+  mpgc::dds::Reader<mpgc::msg::FixedObstacles> fixed(part, fixed_topic, mpgc::dds::QosProfile::latched());
+  mpgc::msg::FixedObstacles f;
+  ASSERT_TRUE(wait_for(fixed, f, [](const auto&) { return true; }, 20.0));
+  EXPECT_GE(f.version, 1u);
+  EXPECT_GT(f.points.size(), 1000u);
+  EXPECT_GT(f.polygons.size(), 5u);  // the crop's land rings plus the inline circle
+  EXPECT_NEAR(f.origin_lat, 38.965 * M_PI / 180, 1e-12);
+  EXPECT_EQ(f.point_spacing, 20.0);
+  // The planner's path: message -> FixedObstacleMap. The inline circle at the origin is an obstacle;
+  // the labelled land point (-76.48 E, 38.95 N) is about 2.6 km west and 1.7 km south.
+  const auto map = mpgc::obstacle_manager::map_from_msg(f);
+  EXPECT_TRUE(map.inside_land({0, 0}));
+  EXPECT_FALSE(map.inside_land({0, 150}));
+
+  mpgc::dds::Topic<mpgc::msg::TrackList> tracks_topic(part, mpgc::topics::kTracks);
+  mpgc::dds::Writer<mpgc::msg::TrackList> tracks(part, tracks_topic, mpgc::dds::QosProfile::state());
+  mpgc::dds::Topic<mpgc::msg::MovingObstacles> moving_topic(part, mpgc::topics::kMovingObstacles);
+  mpgc::dds::Reader<mpgc::msg::MovingObstacles> moving(part, moving_topic, mpgc::dds::QosProfile::state());
+  mpgc::msg::TrackList tl;
+  tl.header.stamp_ns = 123456789;
+  mpgc::msg::Track good{};
+  good.id = 7;
+  good.x = 500;
+  good.y = 600;
+  good.vx = 2;
+  good.vy = -1;
+  good.cov[0] = 25;
+  good.cov[5] = 4;
+  good.length = 100;
+  good.status = mpgc::msg::TrackStatus::TRACK_CONFIRMED;
+  mpgc::msg::Track bad = good;
+  bad.id = 8;
+  bad.x = NAN;
+  mpgc::msg::Track gone = good;
+  gone.id = 9;
+  gone.status = mpgc::msg::TrackStatus::TRACK_DELETED;
+  tl.tracks = {good, bad, gone};
+  mpgc::msg::MovingObstacles m;
+  bool got = false;
+  for (int i = 0; i < 100 && !got; ++i) {
+    tracks.write(tl);
+    got = wait_for(moving, m, [](const auto& v) { return v.t_valid_ns == 123456789; }, 0.2);
+  }
+  ASSERT_TRUE(got);
+  ASSERT_EQ(m.obstacles.size(), 1u);  // NaN track rejected, deleted track skipped
+  EXPECT_EQ(m.obstacles[0].id, 7u);
+  EXPECT_EQ(m.obstacles[0].x, 500.0);
+  EXPECT_EQ(m.obstacles[0].vy, -1.0);
+  EXPECT_EQ(m.obstacles[0].radius, 200.0);
+  EXPECT_EQ(m.obstacles[0].position_std, 5.0);
+  EXPECT_TRUE(proc.running());
+}
+
+TEST(ObstacleManagerProcess, BadChartExitsWithError) {
+  const int domain = mpgc::testing::unique_domain();
+  const std::string bin = mpgc::testing::bin_dir() + "/mpgc_obstacle_manager";
+  const std::string cmd = bin + " --domain " + std::to_string(domain) +
+                          " --set chart.files=/nonexistent/chart.geojson > /dev/null 2>&1";
+  const int rc = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(rc));
+  EXPECT_EQ(WEXITSTATUS(rc), 1);
+}
