@@ -138,3 +138,48 @@ TEST(ObstacleManagerProcess, BadChartExitsWithError) {
   ASSERT_TRUE(WIFEXITED(rc));
   EXPECT_EQ(WEXITSTATUS(rc), 1);
 }
+
+TEST(ObstacleManagerProcess, WholeS57CellOverDdsAbove1e5Points) {
+  const int domain = mpgc::testing::unique_domain();
+  Process proc({mpgc::testing::bin_dir() + "/mpgc_obstacle_manager", "--domain", std::to_string(domain), "--set",
+                "chart.files=" + mpgc::testing::shared_data("chart/US4MD81M/US4MD81M.000"), "--set",
+                "chart.origin_lat=38.965", "--set", "chart.origin_lon=-76.45", "--set", "chart.depth_areas=false",
+                "--set", "chart.spacing=5",
+                "--set", "region.half_size=15000", "--set", "region.republish_distance=1000", "--log-level", "warn"});
+  mpgc::dds::Participant part(static_cast<uint32_t>(domain));
+  mpgc::dds::Topic<mpgc::msg::FixedObstacles> fixed_topic(part, mpgc::topics::kFixedObstacles);
+  mpgc::dds::Reader<mpgc::msg::FixedObstacles> fixed(part, fixed_topic, mpgc::dds::QosProfile::latched());
+  mpgc::dds::Topic<mpgc::msg::NavState> nav_topic(part, mpgc::topics::kOwnState);
+  mpgc::dds::Writer<mpgc::msg::NavState> nav(part, nav_topic, mpgc::dds::QosProfile::state());
+  mpgc::msg::NavState s{};
+  s.valid_mask = mpgc::msg::NAV_POSITION_VALID;
+  s.lat = NAN;  // no lat/lon: no origin cross-check
+  s.lon = NAN;
+  // Nothing is published before the own position is known (region mode); then the region around it.
+  mpgc::msg::FixedObstacles f;
+  bool got = false;
+  for (int i = 0; i < 150 && !got; ++i) {
+    nav.write(s);
+    got = wait_for(fixed, f, [](const auto&) { return true; }, 0.2);
+  }
+  ASSERT_TRUE(got);
+  EXPECT_EQ(f.region_min_x, -15000.0);
+  EXPECT_GT(f.points.size(), 100000u);
+  const auto map = mpgc::obstacle_manager::map_from_msg(f);
+  // The labelled land point (lon -76.46, lat 38.99) and water point (-76.43, 38.96).
+  const mpgc::geo::LocalNed frame({38.965 * M_PI / 180, -76.45 * M_PI / 180});
+  const auto land = frame.to_ned({38.99 * M_PI / 180, -76.46 * M_PI / 180});
+  const auto water = frame.to_ned({38.96 * M_PI / 180, -76.43 * M_PI / 180});
+  EXPECT_TRUE(map.inside_land({land.x, land.y}));
+  EXPECT_FALSE(map.inside_land({water.x, water.y}));
+  // Moving 3 km north re-centres the region: a second, newer version.
+  s.x = 3000.0;
+  mpgc::msg::FixedObstacles f2;
+  got = false;
+  for (int i = 0; i < 150 && !got; ++i) {
+    nav.write(s);
+    got = wait_for(fixed, f2, [](const auto& v) { return v.version > 1; }, 0.2);
+  }
+  ASSERT_TRUE(got);
+  EXPECT_EQ(f2.region_min_x, -12000.0);
+}
