@@ -92,6 +92,39 @@ TEST(Runtime, SimTimeTimersFireOnClockAndAckLockstep) {
   EXPECT_EQ(acked, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5, 6}));
 }
 
+// The lockstep contract the simulator relies on: data published before the Clock of a step is
+// delivered before that step's timers run.
+TEST(Runtime, TimersOfAStepSeeTheDataPublishedBeforeItsClock) {
+  rt::Component c("sim_node", runtime("sim"), quiet());
+  uint64_t latest = 0;
+  std::vector<std::pair<int64_t, uint64_t>> seen;  // (tick time, latest data value) per timer call
+  c.subscribe<msg::Counter>("test/data", dds::QosProfile::command(), [&](const msg::Counter& v) { latest = v.value; });
+  c.every(0.1, [&] { seen.emplace_back(c.now_ns(), latest); });
+
+  dds::Participant p(c.participant().domain_id());
+  dds::Topic<msg::Clock> tc(p, mpgc::topics::kClock);
+  dds::Topic<msg::StepAck> ta(p, mpgc::topics::kStepAck);
+  dds::Topic<msg::Counter> td(p, "test/data");
+  dds::Writer<msg::Clock> clock(p, tc, dds::QosProfile::command(16));
+  dds::Writer<msg::Counter> data(p, td, dds::QosProfile::command());
+  dds::Reader<msg::StepAck> acks(p, ta, dds::QosProfile::command(16));
+  Spinner spin(c);
+  ASSERT_TRUE(wait_for([&] { return clock.matched() && data.matched() && acks.matched(); }, 10.0));
+  constexpr uint64_t kSteps = 100;
+  for (uint64_t step = 0; step < kSteps; ++step) {
+    data.write(msg::Counter{"sim", step + 1});
+    clock.write(msg::Clock{static_cast<int64_t>(step) * 100'000'000, step, 100'000'000, true});
+    bool acked = false;
+    ASSERT_TRUE(wait_for([&] {
+      for (auto& a : acks.take()) acked = acked || a.value.step == step;
+      return acked;
+    }, 10.0));
+  }
+  spin.stop();
+  ASSERT_EQ(seen.size(), kSteps);
+  for (uint64_t k = 0; k < kSteps; ++k) EXPECT_EQ(seen[k].second, k + 1) << "step " << k;
+}
+
 TEST(Runtime, ClockGoingBackwardsIsRejectedAndCounted) {
   rt::Component c("sim_node", runtime("sim"), quiet());
   dds::Participant p(c.participant().domain_id());

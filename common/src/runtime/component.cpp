@@ -58,7 +58,11 @@ Component::Component(std::string name, const RuntimeParams& rp, std::shared_ptr<
   health_writer_ = &publisher<msg::ComponentHealth>(topics::kHealth, h);
   if (sim_clock_ != nullptr) {
     ack_writer_ = &publisher<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16));
-    subscribe<msg::Clock>(topics::kClock, dds::QosProfile::command(16), [this](const msg::Clock& c) { on_clock(c); });
+    auto sub = std::make_unique<Sub<msg::Clock>>(participant_, topic_for<msg::Clock>(topics::kClock),
+                                                 dds::QosProfile::command(16));
+    sub->on_sample = [this](const msg::Clock& c) { on_clock(c); };
+    attach(sub->reader.handle());
+    clock_sub_ = std::move(sub);
   }
   g_waitset = waitset_.handle();
 }
@@ -82,10 +86,9 @@ msg::Header Component::header() {
   return h;
 }
 
-void Component::attach(dds_entity_t reader, std::unique_ptr<SubBase> sub) {
+void Component::attach(dds_entity_t reader) {
   const dds_entity_t rc = dds::check(dds_create_readcondition(reader, DDS_ANY_STATE), "create read condition");
   dds::check(dds_waitset_attach(waitset_.handle(), rc, static_cast<dds_attach_t>(rc)), "attach read condition");
-  subs_.push_back(std::move(sub));
 }
 
 void Component::watch_liveliness(dds_entity_t reader, std::function<void(int32_t)> cb) {
@@ -192,8 +195,9 @@ int Component::spin() {
       log_->error("waitset: {}", dds_strretcode(n));
       return 1;
     }
-    // Data first, then liveliness, then the clock's timers: a clock tick sees the data of its step.
+    // Data first, then the clock's timers: a clock tick sees the data that arrived with it.
     for (auto& s : subs_) s->process(*this);
+    if (clock_sub_) clock_sub_->process(*this);
     for (auto& l : liveliness_) {
       dds_liveliness_changed_status_t st{};
       if (dds_get_liveliness_changed_status(l.reader, &st) < 0) continue;

@@ -77,7 +77,8 @@ class Component {
     sub->on_sample = std::move(on_sample);
     sub->validate = std::move(validate);
     auto& reader = sub->reader;
-    attach(reader.handle(), std::move(sub));
+    attach(reader.handle());
+    subs_.push_back(std::move(sub));
     return reader;
   }
 
@@ -143,7 +144,7 @@ class Component {
     if (it == topics_.end()) it = topics_.emplace(name, std::make_shared<dds::Topic<T>>(participant_, name)).first;
     return *static_cast<const dds::Topic<T>*>(it->second.get());
   }
-  void attach(dds_entity_t reader, std::unique_ptr<SubBase> sub);
+  void attach(dds_entity_t reader);
   void watch_liveliness(dds_entity_t reader, std::function<void(int32_t)> cb);
   void on_clock(const msg::Clock& c);
   void fire_due_timers();
@@ -161,6 +162,7 @@ class Component {
   std::map<std::string, std::shared_ptr<void>> topics_;
   std::vector<std::shared_ptr<void>> owned_;
   std::vector<std::unique_ptr<SubBase>> subs_;
+  std::unique_ptr<SubBase> clock_sub_;  // handled after the data subscriptions of the same wake-up
   std::vector<Timer> timers_;
   std::vector<Liveliness> liveliness_;
   std::map<std::string, uint64_t> counters_;
