@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -63,6 +64,49 @@ void SpeedControllerParams::validate() const {
   require(std::isfinite(min_rpm) && std::isfinite(max_rpm) && max_rpm > min_rpm,
           "SpeedControllerParams.max_rpm must be finite and > min_rpm");
   require(finite_pos(max_rpm_rate), "SpeedControllerParams.max_rpm_rate must be finite and > 0");
+}
+
+void parse_speed_map(const std::string& text, SpeedControllerParams& p) {
+  std::vector<double> sp, rpm;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    std::size_t end = text.find(',', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string item = text.substr(pos, end - pos);
+    pos = end + 1;
+    if (item.find_first_not_of(" \t") == std::string::npos) {
+      if (end == text.size()) break;
+      throw std::invalid_argument("speed map: empty entry in '" + text + "'");
+    }
+    const std::size_t colon = item.find(':');
+    if (colon == std::string::npos) throw std::invalid_argument("speed map: entry '" + item + "' is not speed:rpm");
+    try {
+      std::size_t used1 = 0, used2 = 0;
+      const std::string a = item.substr(0, colon), b = item.substr(colon + 1);
+      const double v = std::stod(a, &used1), n = std::stod(b, &used2);
+      if (a.find_first_not_of(" \t", used1) != std::string::npos || b.find_first_not_of(" \t", used2) != std::string::npos)
+        throw std::invalid_argument("trailing text");
+      sp.push_back(v);
+      rpm.push_back(n);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("speed map: entry '" + item + "' is not speed:rpm with two numbers");
+    }
+  }
+  SpeedControllerParams q = p;
+  q.map_speed = sp;
+  q.map_rpm = rpm;
+  q.validate();
+  p = q;
+}
+
+std::string format_speed_map(const SpeedControllerParams& p) {
+  std::string out;
+  for (std::size_t i = 0; i < p.map_speed.size(); ++i) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%g:%g", i ? ", " : "", p.map_speed[i], p.map_rpm[i]);
+    out += buf;
+  }
+  return out;
 }
 
 SpeedController::SpeedController(const SpeedControllerParams& p) : p_(p) { p_.validate(); }

@@ -3,6 +3,7 @@
 // with pole-placement tuning of the heading PID from first-order Nomoto K, T. No DDS, no clock.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace mpgc::guidance_control {
@@ -50,6 +51,11 @@ struct SpeedControllerParams {
   double max_rpm_rate = 2.0;                // [1/min/s] slew limit of the command
   void validate() const;                    // throws std::invalid_argument naming the bad field
 };
+
+// Parses a speed -> rpm map "speed:rpm, speed:rpm, ..." ([m/s]:[1/min]) into p.map_speed/map_rpm.
+// Throws std::invalid_argument naming the malformed entry.
+void parse_speed_map(const std::string& text, SpeedControllerParams& p);
+std::string format_speed_map(const SpeedControllerParams& p);
 
 class SpeedController {
  public:
