@@ -76,3 +76,29 @@ TEST(Geometry, MinDistanceOfLinearMotion) {
   EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {-1, 0}, 4), 36.0 + 9.0);
   EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {1, 0}, 4), 109.0);
 }
+
+#include "mpgc/opp/chart_obstacles.hpp"
+
+TEST(ChartObstacles, AgreesWithPointSetAndBlocksLand) {
+  namespace om = mpgc::obstacle_manager;
+  std::mt19937_64 g(9);
+  std::vector<opp::Vec2> pts;
+  std::vector<om::PointNE> opts;
+  for (int i = 0; i < 500; ++i) {
+    pts.push_back({u(g) * 1000, u(g) * 1000});
+    opts.push_back({pts.back().x, pts.back().y});
+  }
+  // A square island with no points inside it: only the polygon makes it an obstacle.
+  std::vector<om::Polygon> polys{{1, {{2000, 2000}, {2000, 2100}, {2100, 2100}, {2100, 2000}}}};
+  opp::ChartObstacles chart(std::make_shared<const om::FixedObstacleMap>(opts, polys));
+  opp::PointObstacles plain(pts);
+  for (int q = 0; q < 500; ++q) {
+    const opp::Vec2 a{u(g) * 1000, u(g) * 1000}, b{u(g) * 1000, u(g) * 1000};
+    const double d = u(g) * 20;
+    ASSERT_EQ(chart.segment_clear(a, b, d), plain.segment_clear(a, b, d));
+    ASSERT_NEAR(chart.nearest(a), plain.nearest(a), 1e-9);
+  }
+  EXPECT_FALSE(chart.segment_clear({2050, 1900}, {2050, 2200}, 0.0));  // crosses the island
+  EXPECT_EQ(chart.nearest({2050, 2050}), 0.0);                         // inside land
+  EXPECT_TRUE(chart.segment_clear({1900, 1900}, {1900, 2200}, 50.0));
+}

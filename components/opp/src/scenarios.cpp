@@ -122,13 +122,24 @@ std::vector<Target> random_targets(const Problem& pb, int n, double speed, uint6
 std::vector<Vec2> random_points(const Problem& pb, int n, double keep_out, uint64_t seed) {
   std::mt19937_64 g(seed);
   auto u = [&] { return static_cast<double>(g() >> 11) * (1.0 / 9007199254740992.0); };
-  std::vector<Vec2> out;
-  out.reserve(static_cast<size_t>(n));
   const Bounds& b = pb.bounds;
-  while (static_cast<int>(out.size()) < n) {
-    const Vec2 p{b.min_x + u() * (b.max_x - b.min_x), b.min_y + u() * (b.max_y - b.min_y)};
-    if (point_segment_dist2(p, pb.start, pb.goal.p) < keep_out * keep_out) continue;
-    out.push_back(p);
+  // 40 round islands (radius 2 % of the map) whose shores stay `keep_out` from the straight
+  // route; the points fill them uniformly, like densified shore lines and point features.
+  const double rad = 0.02 * std::max(b.max_x - b.min_x, b.max_y - b.min_y);
+  std::vector<Vec2> centres;
+  for (int guard = 0; centres.size() < 40 && guard < 100000; ++guard) {
+    const Vec2 c{b.min_x + u() * (b.max_x - b.min_x), b.min_y + u() * (b.max_y - b.min_y)};
+    if (point_segment_dist2(c, pb.start, pb.goal.p) < (keep_out + rad) * (keep_out + rad)) continue;
+    if (norm2(c - pb.start) < 4 * keep_out * keep_out || norm2(c - pb.goal.p) < 4 * keep_out * keep_out) continue;
+    centres.push_back(c);
+  }
+  std::vector<Vec2> out;
+  if (centres.empty()) return out;
+  out.reserve(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const Vec2 c = centres[static_cast<size_t>(i) % centres.size()];
+    const double r = rad * std::sqrt(u()), a = 2 * kPi * u();
+    out.push_back(c + Vec2{r * std::cos(a), r * std::sin(a)});
   }
   return out;
 }

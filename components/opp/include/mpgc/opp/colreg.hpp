@@ -1,5 +1,6 @@
 // The COLREG model of seed 000 §5 (eq. 11-19) as a predicate on one straight leg of the own ship
-// against one target, plus a reporting classification (head-on, crossing, overtaking) with CPA.
+// against one target. Reporting (encounter lists, CPA/TCPA, rule 13-15 sectors) uses the shared
+// geometry in mpgc/colreg/colreg.hpp; this predicate is the planner's own constraint.
 #pragma once
 
 #include <cstdint>
@@ -32,26 +33,5 @@ struct ColregCheck {
 // condition (eq. 13-14) with time of arrival at x_c (eq. 15); overtaking (eq. 16) requires the
 // target first at x_c; crossing requires eq. 18.
 ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p);
-
-// Closest point of approach of two constant-velocity points: tcpa [s] (may be negative) and cpa [m].
-struct Cpa {
-  double tcpa = 0.0;
-  double cpa = 0.0;
-};
-Cpa closest_approach(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w);
-
-// Reporting view of one encounter (mirrors msg::EncounterType / OwnRole without DDS).
-enum class EncounterType { kNone, kHeadOn, kCrossingGiveWay, kCrossingStandOn, kOvertaking, kOvertaken };
-enum class OwnRole { kNone, kGiveWay, kStandOn, kBothGiveWay };
-struct EncounterInfo {
-  EncounterType type = EncounterType::kNone;
-  OwnRole role = OwnRole::kNone;
-  double cpa = 0.0;      // [m]
-  double tcpa = 0.0;     // [s]
-  double range = 0.0;    // [m]
-  double bearing = 0.0;  // [rad] true bearing own -> target
-};
-// kNone when the target is beyond d_colreg or the §5 geometry gives no encounter.
-EncounterInfo classify_encounter(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, double d_colreg, const ColregParams& p);
 
 }  // namespace mpgc::opp

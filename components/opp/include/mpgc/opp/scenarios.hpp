@@ -22,8 +22,8 @@ struct Scenario {
 // Lpp, start [0, 0] heading 45 deg, goal [100, 100] Lpp, d_safety = 10 Lpp, targets of Table 1.
 // Speeds are not in the paper: every ship sails at `speed` (the same for all, which puts target 1
 // of scenario 1 on a collision course). Scenario 3 adds canal walls as points 1 Lpp apart, 25 Lpp
-// either side of the diagonal (the paper gives no width). `fixed_points` > 0 adds that many random
-// fixed points far from the route (growth benchmark); `extra_targets` adds crossing targets.
+// either side of the diagonal (the paper gives no width).
+// (see random_points / random_targets for the growth benchmark).
 Scenario paper_scenario(int n, double lpp = 100.0, double speed = 6.0);
 
 // Scenario 1 with its targets frozen into discs of radius d_safety at the positions they hold when
@@ -37,7 +37,7 @@ Scenario disc_world();
 
 // `n` extra targets on crossing tracks (deterministic from `seed`), for growth measurements.
 std::vector<Target> random_targets(const Problem& pb, int n, double speed, uint64_t seed);
-// `n` random fixed points in the bounds, kept at least `keep_out` from the straight route.
+// `n` random fixed points on 40 round islands kept at least `keep_out` from the straight route.
 std::vector<Vec2> random_points(const Problem& pb, int n, double keep_out, uint64_t seed);
 
 }  // namespace mpgc::opp
