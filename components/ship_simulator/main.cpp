@@ -1,0 +1,182 @@
+// mpgc_ship_simulator: the world as the autonomy sees it. Integrates the own ship from
+// control/actuators, moves the targets, publishes sensors, ground truth and the clock.
+// Time modes (README.md): realtime, factor (fixed real-time factor), lockstep (barrier on
+// clock/ack, as fast as the slowest participant). The simulator runs on the wall clock.
+#include <cmath>
+#include <memory>
+
+#include "mpgc/msg/control.hpp"
+#include "mpgc/msg/nav.hpp"
+#include "mpgc/msg/sensors.hpp"
+#include "mpgc/runtime/component.hpp"
+#include "mpgc/ship_simulator/lockstep.hpp"
+#include "mpgc/ship_simulator/world.hpp"
+#include "mpgc/topics.hpp"
+
+namespace sim = mpgc::ship_simulator;
+namespace msg = mpgc::msg;
+namespace dds = mpgc::dds;
+namespace rt = mpgc::rt;
+namespace topics = mpgc::topics;
+
+namespace {
+
+struct Params {
+  std::string world_file;
+  std::string mode;          // realtime | factor | lockstep
+  double factor = 1.0;       // [-] real-time factor in factor mode
+  double step = 0.1;         // [s] simulation step
+  double duration = 0.0;     // [s] simulated time after which the simulator exits; 0 = never
+  std::string participants;  // comma-separated component names for the lockstep barrier
+  double ack_timeout = 1.0;  // [s] wall time before the current Clock is sent again
+  double truth_period = 0.1; // [s] simulated time between sim/truth samples
+
+  void declare(rt::ParamSet& ps) {
+    ps.add("world.file", &world_file, "", "world YAML file (own ship, targets, sensors; README.md)");
+    ps.add("time.mode", &mode, "realtime", "realtime | factor | lockstep", {"realtime", "factor", "lockstep"});
+    ps.add("time.factor", &factor, 1.0, "-", 0.01, 1000.0, "real-time factor in factor mode");
+    ps.add("time.step", &step, 0.1, "s", 0.001, 1.0, "simulation step (RK4 step of the ship model)");
+    ps.add("time.duration", &duration, 0.0, "s", 0.0, 1e7, "simulated time after which to exit (0 = run forever)");
+    ps.add("lockstep.participants", &participants, "", "comma-separated components that must ack every step");
+    ps.add("lockstep.ack_timeout", &ack_timeout, 1.0, "s", 0.01, 60.0, "resend the Clock after this wall time without progress");
+    ps.add("truth.period", &truth_period, 0.1, "s", 0.001, 60.0, "sim/truth publication period (simulated time)");
+  }
+};
+
+msg::ShipTruth to_msg(const sim::TruthShip& t) {
+  return {t.id, t.mmsi, t.x, t.y, t.heading, t.cog, t.sog, t.u, t.v, t.r, t.length, t.beam};
+}
+
+// Why an actuator command is unusable, or "" (design.md: reject, count, keep the last valid one).
+std::string check_command(const msg::ActuatorCommand& c, const sim::ShipModel& m) {
+  if (!std::isfinite(c.rudder)) return "rudder is not finite";
+  if (!std::isfinite(c.propeller_rpm)) return "propeller_rpm is not finite";
+  if (std::abs(c.rudder) > m.max_rudder() + 1e-9)
+    return "rudder " + std::to_string(c.rudder) + " rad is beyond the limit " + std::to_string(m.max_rudder());
+  if (c.propeller_rpm < 0.0 || c.propeller_rpm > m.max_rpm())
+    return "propeller_rpm " + std::to_string(c.propeller_rpm) + " is outside [0, " + std::to_string(m.max_rpm()) + "]";
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Params p;
+  rt::ParamSet ps;
+  p.declare(ps);
+  return rt::run_component("ship_simulator", argc, argv, ps, [&](rt::Component& c) {
+    if (p.world_file.empty()) throw std::invalid_argument("world.file is required");
+    const auto step_ns = static_cast<int64_t>(std::llround(p.step * 1e9));
+    auto world = std::make_shared<sim::World>(sim::WorldConfig::from_file(p.world_file), step_ns);
+    const auto& cfg = world->config();
+    const bool lockstep = p.mode == "lockstep";
+    const double wall_per_sim = p.mode == "factor" ? 1.0 / p.factor : 1.0;
+    auto barrier = std::make_shared<sim::LockstepBarrier>(sim::split_names(p.participants));
+    c.log().info("world {}: model {}, {} targets, mode {}, step {} s, participants [{}]", p.world_file,
+                 world->own().name(), cfg.targets.size(), p.mode, p.step, p.participants);
+
+    auto& clock_w = c.publisher<msg::Clock>(topics::kClock, dds::QosProfile::command(16));
+    auto& nav_w = c.publisher<msg::NavState>(topics::kOwnState, dds::QosProfile::state(3 * cfg.nav.period * wall_per_sim));
+    auto& ais_w = c.publisher<msg::AisReport>(topics::kAis, dds::QosProfile::command(64));
+    auto& radar_w = c.publisher<msg::RadarScan>(topics::kRadar, dds::QosProfile::state(3 * cfg.radar.period * wall_per_sim));
+    auto& truth_w = c.publisher<msg::GroundTruth>(topics::kTruth, dds::QosProfile::state(3 * p.truth_period * wall_per_sim));
+
+    struct State {
+      sim::ShipCommand cmd;
+      uint32_t seq = 0;
+      bool started = false;
+      int64_t last_progress_wall = 0;
+      int64_t start_wall = 0;
+      int64_t next_truth_ns = 0;
+      msg::Clock last_clock{};
+    };
+    auto st = std::make_shared<State>();
+    st->cmd = world->initial_command();
+    auto header = [st, world] { return msg::Header{world->time_ns(), "ship_simulator", st->seq++}; };
+
+    // Sensor samples of the current step, then its Clock (a participant's tick sees its data).
+    auto publish_step = [&, st, world, barrier, header, lockstep] {
+      const sim::SensorOutputs out = world->sense();
+      const int64_t t = world->time_ns();
+      const sim::ShipState& s = world->own().state();
+      if (out.nav) {
+        const auto& n = *out.nav;
+        const auto ll = world->frame().to_latlon({n.x, n.y});
+        msg::NavState m{header(), n.x, n.y, ll.lat, ll.lon, n.heading, n.cog, n.sog, s.u, s.v, n.rot, s.rudder, s.rpm,
+                        msg::NAV_POSITION_VALID | msg::NAV_HEADING_VALID | msg::NAV_VELOCITY_VALID |
+                            msg::NAV_RATE_VALID | msg::NAV_ACTUATORS_VALID};
+        nav_w.write(m);
+      }
+      for (const auto& a : out.ais) {
+        const auto ll = world->frame().to_latlon({a.x, a.y});
+        const auto& tc = *std::find_if(cfg.targets.begin(), cfg.targets.end(), [&](const auto& x) { return x.mmsi == a.mmsi; });
+        ais_w.write(msg::AisReport{header(), a.mmsi, msg::AisClass::AIS_CLASS_A, ll.lat, ll.lon, a.cog, a.sog, a.heading,
+                                   a.rot, a.nav_status, a.report_time_ns, tc.length, tc.beam});
+      }
+      if (out.radar) {
+        msg::RadarScan r{header(), out.radar->antenna_x, out.radar->antenna_y, out.radar->max_range, {}};
+        for (const auto& k : out.radar->contacts)
+          r.contacts.push_back({k.range, k.bearing, cfg.radar.sigma_range, cfg.radar.sigma_bearing});
+        radar_w.write(r);
+      }
+      if (t >= st->next_truth_ns) {
+        msg::GroundTruth g{header(), to_msg(world->own_truth()), {}};
+        for (const auto& tt : world->target_truth()) g.targets.push_back(to_msg(tt));
+        truth_w.write(g);
+        st->next_truth_ns += static_cast<int64_t>(std::llround(p.truth_period * 1e9));
+      }
+      st->last_clock = msg::Clock{t, world->step_index(), world->step_ns(), lockstep && !barrier->empty()};
+      barrier->begin(world->step_index());
+      clock_w.write(st->last_clock);
+      st->last_progress_wall = c.now_ns();
+    };
+
+    auto finished = [&, world] { return p.duration > 0.0 && world->time_ns() >= static_cast<int64_t>(std::llround(p.duration * 1e9)); };
+    auto advance = [&, st, world, publish_step, finished] {
+      if (!st->started) {
+        st->started = true;
+        st->start_wall = c.now_ns();
+        publish_step();  // step 0: the initial state
+        return;
+      }
+      if (finished()) {
+        const double wall = (c.now_ns() - st->start_wall) * 1e-9, simt = world->time_ns() * 1e-9;
+        c.log().info("done: {} steps, {:.1f} s simulated in {:.2f} s wall, real-time factor {:.1f}",
+                     world->step_index(), simt, wall, wall > 0 ? simt / wall : 0.0);
+        c.stop(0);
+        return;
+      }
+      world->step(st->cmd);
+      c.count("steps");
+      publish_step();
+    };
+
+    c.subscribe<msg::ActuatorCommand>(
+        topics::kActuators, dds::QosProfile::command(16),
+        [st, world](const msg::ActuatorCommand& a) { st->cmd = {a.rudder, a.propeller_rpm}; },
+        [world](const msg::ActuatorCommand& a) { return check_command(a, world->own()); });
+
+    if (!lockstep) {
+      c.every(p.step * wall_per_sim, advance);
+    } else if (barrier->empty()) {
+      c.every(1e-9, advance);  // no participants: as fast as the model goes
+    } else {
+      c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
+        const auto r = barrier->ack(a.component, a.step);
+        if (r == sim::LockstepBarrier::Ack::Unknown) c.count("lockstep.unknown_acks");
+        if (r == sim::LockstepBarrier::Ack::Counted && barrier->complete()) advance();
+      });
+      // Start, and resend the current Clock when an ack (or the Clock itself) was lost.
+      c.every(std::min(0.05, p.ack_timeout / 2), [&, st, barrier, advance] {
+        if (!st->started) return advance();
+        if (c.now_ns() - st->last_progress_wall < static_cast<int64_t>(p.ack_timeout * 1e9)) return;
+        std::string missing;
+        for (const auto& m : barrier->missing()) missing += (missing.empty() ? "" : ", ") + m;
+        c.log().debug("step {}: no ack from [{}] within {} s, resending the clock", st->last_clock.step, missing, p.ack_timeout);
+        c.count("lockstep.resends");
+        clock_w.write(st->last_clock);
+        st->last_progress_wall = c.now_ns();
+      });
+    }
+  });
+}

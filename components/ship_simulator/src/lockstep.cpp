@@ -1,0 +1,46 @@
+#include "mpgc/ship_simulator/lockstep.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace mpgc::ship_simulator {
+
+LockstepBarrier::LockstepBarrier(const std::vector<std::string>& participants) {
+  for (const auto& p : participants) {
+    if (p.empty()) throw std::invalid_argument("lockstep participant name is empty");
+    if (!participants_.insert(p).second) throw std::invalid_argument("lockstep participant '" + p + "' listed twice");
+  }
+}
+
+void LockstepBarrier::begin(uint64_t step) {
+  step_ = step;
+  acked_.clear();
+}
+
+LockstepBarrier::Ack LockstepBarrier::ack(const std::string& component, uint64_t step) {
+  if (!participants_.count(component)) return Ack::Unknown;
+  if (step != step_) return Ack::Stale;
+  return acked_.insert(component).second ? Ack::Counted : Ack::Duplicate;
+}
+
+std::vector<std::string> LockstepBarrier::missing() const {
+  std::vector<std::string> out;
+  for (const auto& p : participants_)
+    if (!acked_.count(p)) out.push_back(p);
+  return out;
+}
+
+std::vector<std::string> split_names(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto b = item.find_first_not_of(" \t");
+    if (b == std::string::npos) continue;
+    const auto e = item.find_last_not_of(" \t");
+    out.push_back(item.substr(b, e - b + 1));
+  }
+  return out;
+}
+
+}  // namespace mpgc::ship_simulator

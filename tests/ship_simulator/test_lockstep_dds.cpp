@@ -1,0 +1,141 @@
+// Lockstep over DDS: the simulator process and an in-test participant (an mpgc::rt::Component
+// on clock.source=sim). The simulator must never publish step k+1 before the participant has
+// acted on step k, and bad actuator commands must be rejected while the last valid one holds.
+#include <gtest/gtest.h>
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include <spdlog/sinks/null_sink.h>
+
+#include "mpgc/geo/angles.hpp"
+#include "mpgc/msg/control.hpp"
+#include "mpgc/msg/nav.hpp"
+#include "mpgc/runtime/component.hpp"
+#include "mpgc/ship_simulator/lockstep.hpp"
+#include "mpgc/testing.hpp"
+#include "mpgc/topics.hpp"
+
+extern char** environ;
+
+namespace msg = mpgc::msg;
+namespace dds = mpgc::dds;
+namespace rt = mpgc::rt;
+namespace topics = mpgc::topics;
+namespace sim = mpgc::ship_simulator;
+
+TEST(LockstepBarrier, WaitsForEveryParticipant) {
+  sim::LockstepBarrier b(sim::split_names(" guidance, opp ,,"));
+  b.begin(4);
+  EXPECT_FALSE(b.complete());
+  EXPECT_EQ(b.ack("guidance", 3), sim::LockstepBarrier::Ack::Stale);
+  EXPECT_EQ(b.ack("nobody", 4), sim::LockstepBarrier::Ack::Unknown);
+  EXPECT_EQ(b.ack("guidance", 4), sim::LockstepBarrier::Ack::Counted);
+  EXPECT_EQ(b.ack("guidance", 4), sim::LockstepBarrier::Ack::Duplicate);
+  EXPECT_FALSE(b.complete());
+  EXPECT_EQ(b.missing(), std::vector<std::string>{"opp"});
+  EXPECT_EQ(b.ack("opp", 4), sim::LockstepBarrier::Ack::Counted);
+  EXPECT_TRUE(b.complete());
+  b.begin(5);
+  EXPECT_FALSE(b.complete());
+  EXPECT_THROW(sim::LockstepBarrier({"a", "a"}), std::invalid_argument);
+}
+
+namespace {
+pid_t spawn(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  return pid;
+}
+
+// Waits up to timeout_s for the child; returns its exit status or -1 (then kills it).
+int wait_child(pid_t pid, double timeout_s) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < end) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -1;
+}
+}  // namespace
+
+TEST(LockstepDds, SimulatorNeverRunsAheadOfTheParticipant) {
+  const int domain = mpgc::testing::unique_domain();
+  const std::string world = ::testing::TempDir() + "/lockstep_world_" + std::to_string(domain) + ".yaml";
+  {
+    std::ofstream w(world);
+    w << "origin: {lat_deg: 38.9, lon_deg: -76.4}\nseed: 5\n"
+      << "own_ship: {model: mmg, data_dir: \"" << mpgc::testing::shared_data("ship_models")
+      << "\", heading_deg: 0, speed_kn: 15}\n"
+      << "targets: [{mmsi: 257000001, x_m: 2000, y_m: 500, course_deg: 180, speed_kn: 10}]\n";
+  }
+  rt::RuntimeParams rp;
+  rp.domain = domain;
+  rp.clock = "sim";
+  auto log = std::make_shared<spdlog::logger>("peer", std::make_shared<spdlog::sinks::null_sink_mt>());
+  rt::Component peer("peer", rp, log);
+
+  std::atomic<uint64_t> max_seen{0};
+  peer.subscribe<msg::Clock>(topics::kClock, dds::QosProfile::command(16),
+                             [&](const msg::Clock& c) { max_seen = std::max<uint64_t>(max_seen, c.step); });
+  double last_rudder = std::nan(""), last_x = 0.0;
+  peer.subscribe<msg::NavState>(topics::kOwnState, dds::QosProfile::state(), [&](const msg::NavState& n) {
+    last_rudder = n.rudder;
+    last_x = n.x;
+  });
+  uint64_t sim_rejected = 0;
+  peer.subscribe<msg::ComponentHealth>(topics::kHealth, dds::QosProfile::latched(), [&](const msg::ComponentHealth& h) {
+    if (h.component == "ship_simulator") sim_rejected = h.rejected_inputs;
+  });
+  auto& act = peer.publisher<msg::ActuatorCommand>(topics::kActuators, dds::QosProfile::command(16));
+  std::vector<uint64_t> ticks;
+  int ahead = 0;
+  const double ten = mpgc::geo::deg2rad(10.0);
+  peer.every(0.1, [&] {
+    const uint64_t k = static_cast<uint64_t>(peer.now_ns() / 100'000'000);
+    ticks.push_back(k);
+    if (max_seen > k) ++ahead;  // a Clock beyond the step we are still acting on
+    if (k % 7 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(3));  // a slow participant
+    msg::ActuatorCommand a{peer.header(), ten, 80.0};
+    if (k == 5) act.write(a);
+    if (k == 10) {
+      a.rudder = std::nan("");
+      act.write(a);
+    }
+    if (k == 15) {
+      a.rudder = 1.0;  // 57 deg: beyond the 35 deg limit
+      act.write(a);
+    }
+  });
+  std::thread spinner([&] { peer.spin(); });
+
+  const pid_t pid = spawn({mpgc::testing::bin_dir() + "/mpgc_ship_simulator", "--domain", std::to_string(domain),
+                           "--log-level", "warn", "--set", "world.file=" + world, "--set", "time.mode=lockstep",
+                           "--set", "lockstep.participants=peer", "--set", "lockstep.ack_timeout=0.2", "--set",
+                           "time.duration=30"});
+  ASSERT_GT(pid, 0);
+  const int rc = wait_child(pid, 120.0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the final health sample
+  peer.stop();
+  spinner.join();
+
+  EXPECT_EQ(rc, 0);
+  ASSERT_EQ(ticks.size(), 301u);  // steps 0..300 of 30 s, each acted on exactly once
+  for (std::size_t i = 0; i < ticks.size(); ++i) EXPECT_EQ(ticks[i], i);
+  EXPECT_EQ(ahead, 0);
+  EXPECT_NEAR(last_rudder, ten, 1e-6);  // the valid 10 deg order held; NaN and 57 deg rejected
+  EXPECT_GT(last_x, 200.0);
+  EXPECT_EQ(sim_rejected, 2u);
+}
