@@ -126,9 +126,13 @@ TEST(FixedObstacleMap, SegmentClearanceAndLandEqualBruteForce) {
       const PointNE b{a.x + l * std::cos(th), a.y + l * std::sin(th)};
       ASSERT_EQ(map.inside_land(a), brute_inside(polys, a)) << "seed " << seed << " query " << k;
       // Same per-primitive function and the min of it: equal bit for bit.
-      ASSERT_EQ(map.segment_clearance(a, b), brute_segment_clearance(pts, polys, a, b))
-          << "seed " << seed << " query " << k;
-      ASSERT_EQ(map.clearance(a), brute_segment_clearance(pts, polys, a, a));
+      const double bf = brute_segment_clearance(pts, polys, a, b);
+      ASSERT_EQ(map.segment_clearance(a, b), bf) << "seed " << seed << " query " << k;
+      if (k % 10 == 1) {
+        ASSERT_EQ(map.clearance(a), brute_segment_clearance(pts, polys, a, a));
+      }
+      for (double d : {0.0, 10.0, 100.0, 300.0, bf, std::nextafter(bf, 1e300)})
+        ASSERT_EQ(map.segment_clear(a, b, d), bf >= d) << "seed " << seed << " query " << k << " d " << d;
     }
   }
 }

@@ -222,9 +222,13 @@ void bench_chart(std::mt19937_64& rng, const std::string& chart) {
   t0 = now_s();
   for (const auto& q : qs) sink += map.nearest_distance(q.first);
   const double t_near = (now_s() - t0) / nq;
+  t0 = now_s();
+  int clear = 0;
+  for (const auto& q : qs) clear += map.segment_clear(q.first, q.second, 200.0);
+  const double t_clear = (now_s() - t0) / nq;
   std::printf("full map (%zu points + %zu edges): segment_clearance %.2f us, inside_land %.2f us (%d of %d on land), "
-              "nearest_distance %.2f us  (sink %.3g)\n",
-              map.points().size(), segs.size(), t_full * 1e6, t_land * 1e6, land, nq, t_near * 1e6, sink);
+              "nearest_distance %.2f us, segment_clear(d = 200 m) %.2f us (%d of %d clear)  (sink %.3g)\n",
+              map.points().size(), segs.size(), t_full * 1e6, t_land * 1e6, land, nq, t_near * 1e6, t_clear * 1e6, clear, nq, sink);
 }
 
 }  // namespace

@@ -155,3 +155,15 @@ double FixedObstacleMap::segment_clearance(PointNE a, PointNE b) const {
 }
 
 }  // namespace mpgc::obstacle_manager
+
+namespace mpgc::obstacle_manager {
+
+bool FixedObstacleMap::segment_clear(PointNE a, PointNE b, double d) const {
+  check_query(a, "segment_clear");
+  check_query(b, "segment_clear");
+  if (std::isnan(d)) throw std::invalid_argument("segment_clear: distance is NaN");
+  if (inside_land(a)) return d <= 0.0;
+  return !impl_->edges_and_points.any_within(a, b, d);
+}
+
+}  // namespace mpgc::obstacle_manager

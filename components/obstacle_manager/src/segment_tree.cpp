@@ -165,6 +165,25 @@ double SegmentTree::min_distance(PointNE q0, PointNE q1) const {
   return best;
 }
 
+bool SegmentTree::any_within(PointNE q0, PointNE q1, double d) const {
+  if (nodes_.empty()) return false;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (!(segment_box_distance(q0, q1, n.box) < d)) continue;
+    if (n.count == 0) {
+      stack[top++] = n.first + 1;
+      stack[top++] = n.first;
+      continue;
+    }
+    for (uint32_t i = n.first; i < n.first + n.count; ++i)
+      if (segment_distance(q0, q1, segs_[i].a, segs_[i].b) < d) return true;
+  }
+  return false;
+}
+
 bool SegmentTree::odd_crossings(PointNE p) const {
   if (nodes_.empty()) return false;
   std::vector<uint32_t> groups;

@@ -27,6 +27,8 @@ class SegmentTree {
   // min over segments of segment_distance(q0, q1, s); +inf when empty. Exact: the same
   // per-segment function as a brute-force loop, with branch and bound on exact box distances.
   double min_distance(PointNE q0, PointNE q1) const;
+  // True when some segment is closer than d to [q0, q1] (same per-segment function).
+  bool any_within(PointNE q0, PointNE q1, double d) const;
   // Groups with an odd number of edges crossing the ray from p towards +y (east).
   bool odd_crossings(PointNE p) const;
   BoxNE bounds() const;

@@ -82,6 +82,9 @@ class FixedObstacleMap {
   // Exact minimum distance [m] from the segment [a, b] to any obstacle (points and polygon
   // edges); 0 when the segment crosses or touches an edge or lies inside land. +inf when empty.
   double segment_clearance(PointNE a, PointNE b) const;
+  // segment_clearance(a, b) >= d, answered faster: the search stops at the first obstacle closer
+  // than d and never explores farther than d (the planner's collision check, seed 000 eq. 4).
+  bool segment_clear(PointNE a, PointNE b, double d) const;
 
   // Bounding box of every point and ring vertex (all zero when empty).
   BoxNE bounds() const;
