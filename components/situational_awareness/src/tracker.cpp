@@ -102,12 +102,12 @@ Mat4 cv_process_noise(double dt, double q) {
 
 Tracker::Tracker(const TrackerParams& p) : p_(p) { p_.validate(); }
 
-void Tracker::refuse(std::vector<std::string>& why, const std::string& key, const std::string& detail) {
+void Tracker::refuse(std::vector<Rejection>& why, const std::string& key, const std::string& detail) {
   ++rejected_[key];
-  why.push_back(key + ": " + detail);
+  why.push_back({key, detail});
 }
 
-bool Tracker::check_time(int64_t stamp_ns, int64_t receive_ns, const char* what, std::vector<std::string>& why) {
+bool Tracker::check_time(int64_t stamp_ns, int64_t receive_ns, const char* what, std::vector<Rejection>& why) {
   const std::string w(what);
   if (stamp_ns < 0) {
     refuse(why, w + ".bad_stamp", "stamp " + std::to_string(stamp_ns) + " ns is negative");
@@ -181,8 +181,8 @@ void Tracker::update(Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& 
   t.updated_ns = std::max(t.updated_ns, t_ns);
 }
 
-std::vector<std::string> Tracker::add_ais(const AisInput& r, int64_t receive_ns) {
-  std::vector<std::string> why;
+std::vector<Rejection> Tracker::add_ais(const AisInput& r, int64_t receive_ns) {
+  std::vector<Rejection> why;
   if (r.mmsi == 0 || r.mmsi > 999999999u) {
     refuse(why, "ais.bad_mmsi", "MMSI " + std::to_string(r.mmsi) + " is not a 9-digit identity");
     return why;
@@ -264,8 +264,8 @@ std::vector<std::string> Tracker::add_ais(const AisInput& r, int64_t receive_ns)
   return why;
 }
 
-std::vector<std::string> Tracker::add_radar(const RadarScanInput& s, int64_t receive_ns) {
-  std::vector<std::string> why;
+std::vector<Rejection> Tracker::add_radar(const RadarScanInput& s, int64_t receive_ns) {
+  std::vector<Rejection> why;
   if (!std::isfinite(s.antenna_x) || !std::isfinite(s.antenna_y) || !std::isfinite(s.max_range) ||
       s.max_range <= 0.0) {
     refuse(why, "radar.bad_scan", "antenna position or max_range not finite/positive");

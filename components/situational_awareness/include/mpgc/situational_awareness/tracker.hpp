@@ -5,7 +5,7 @@
 //
 //   sa::Tracker trk(params);
 //   trk.set_origin(origin);                               // needed for AIS lat/lon
-//   auto why = trk.add_ais(report, now_ns);               // empty: accepted; else the reasons
+//   auto why = trk.add_ais(report, now_ns);               // empty: accepted; else Rejections
 //   auto bad = trk.add_radar(scan, now_ns);               // one reason per refused contact
 //   trk.advance(nav_stamp_ns);                            // drop tracks silent for too long
 //   for (const sa::Track& t : trk.tracks_at(now_ns)) ...  // predicted to now
@@ -87,6 +87,13 @@ struct TrackerParams {
 
 enum class TrackStatus { kTentative, kConfirmed, kCoasting };
 
+// Why an input (or part of it) was not used: `reason` is a short counter key such as
+// "ais.bad_mmsi" or "radar.future_stamp", `detail` says which value was wrong.
+struct Rejection {
+  std::string reason;
+  std::string detail;
+};
+
 struct Track {
   uint32_t id = 0;          // stable for the life of the track, never reused
   uint32_t mmsi = 0;        // 0 until an AIS report has been associated
@@ -119,8 +126,8 @@ class Tracker {
 
   // Each returns the reasons of what was refused (empty when all was used); every reason is
   // also counted in rejected(). `receive_ns` is the time the caller received the input.
-  std::vector<std::string> add_ais(const AisInput& r, int64_t receive_ns);
-  std::vector<std::string> add_radar(const RadarScanInput& s, int64_t receive_ns);
+  std::vector<Rejection> add_ais(const AisInput& r, int64_t receive_ns);
+  std::vector<Rejection> add_radar(const RadarScanInput& s, int64_t receive_ns);
   // Moves the tracker's notion of "now" forward to a trusted sample stamp (e.g. own navigation)
   // and deletes the tracks that have been silent too long. Earlier stamps are ignored.
   void advance(int64_t stamp_ns);
@@ -134,8 +141,8 @@ class Tracker {
   uint64_t deleted_count() const { return deleted_; }
 
  private:
-  bool check_time(int64_t stamp_ns, int64_t receive_ns, const char* what, std::vector<std::string>& why);
-  void refuse(std::vector<std::string>& why, const std::string& key, const std::string& detail);
+  bool check_time(int64_t stamp_ns, int64_t receive_ns, const char* what, std::vector<Rejection>& why);
+  void refuse(std::vector<Rejection>& why, const std::string& key, const std::string& detail);
   Track& start_track(const Vec4& x, const Mat4& P, int64_t t_ns);
   // Innovation of a linear measurement z = H x (+ noise R) taken at t_ns, for the track's state
   // (predicted forward, or retrodicted when t_ns is older than the state: out-of-sequence).
