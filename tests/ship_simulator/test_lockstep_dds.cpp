@@ -139,3 +139,38 @@ TEST(LockstepDds, SimulatorNeverRunsAheadOfTheParticipant) {
   EXPECT_GT(last_x, 200.0);
   EXPECT_EQ(sim_rejected, 2u);
 }
+
+namespace {
+std::string run(const std::string& cmd, int* rc) {
+  std::string out;
+  FILE* f = popen(cmd.c_str(), "r");
+  if (f == nullptr) return out;
+  char buf[4096];
+  while (fgets(buf, sizeof(buf), f) != nullptr) out += buf;
+  const int st = pclose(f);
+  *rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return out;
+}
+}  // namespace
+
+TEST(TrialExecutable, PrintsOneJsonObjectAndRejectsBadArguments) {
+  const std::string exe = mpgc::testing::bin_dir() + "/mpgc_trial";
+  int rc = -1;
+  const std::string tc = run(exe + " turning-circle --rudder-deg 35 --side port 2>/dev/null", &rc);
+  EXPECT_EQ(rc, 0);
+  for (const char* key : {"\"advance_m\":", "\"transfer_m\":", "\"tactical_diameter_m\":", "\"steady_diameter_m\":",
+                          "\"speed_ratio_steady\":"})
+    EXPECT_NE(tc.find(key), std::string::npos) << key << " missing in " << tc;
+  EXPECT_EQ(tc.front(), '{');
+  EXPECT_EQ(tc.substr(tc.size() - 2), "}\n");
+  const std::string zz = run(exe + " zigzag --angle-deg 20 --side starboard 2>/dev/null", &rc);
+  EXPECT_EQ(rc, 0);
+  EXPECT_NE(zz.find("\"first_overshoot_deg\":"), std::string::npos);
+  EXPECT_NE(zz.find("\"second_overshoot_deg\":"), std::string::npos);
+  run(exe + " zigzag --angle-deg 20 --side sideways 2>/dev/null", &rc);
+  EXPECT_NE(rc, 0);
+  run(exe + " table --out /nonexistent/dir/t.csv 2>/dev/null", &rc);
+  EXPECT_NE(rc, 0);
+  run(exe + " table --out /dev/null --rudders-deg 10,abc 2>/dev/null", &rc);
+  EXPECT_NE(rc, 0);
+}
