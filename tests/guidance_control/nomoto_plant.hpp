@@ -41,11 +41,11 @@ struct NomotoPlant {
   double K = 0.185, T = 107.3;           // [1/s], [s]
   double max_rudder = 0.6109;            // [rad]
   double rudder_rate = 0.0401;           // [rad/s]
-  double rpm_per_mps = 11.5;             // [1/min per m/s] calm-water speed map (matches the default)
+  double rpm_per_mps = 13.175;            // [1/min per m/s] calm-water speed map (matches the default)
   double surge_t = 200.0;                // [s] surge time constant
   double current_n = 0.0, current_e = 0.0;  // [m/s]
   // State.
-  double x = 0.0, y = 0.0, psi = 0.0, u = 7.0, r = 0.0, rudder = 0.0, rpm = 80.5;
+  double x = 0.0, y = 0.0, psi = 0.0, u = 7.0, r = 0.0, rudder = 0.0, rpm = 92.225;
 
   void step(double dt, double rudder_cmd, double rpm_cmd) {
     const double target = std::clamp(rudder_cmd, -max_rudder, max_rudder);

@@ -134,13 +134,13 @@ TEST(HeadingAutopilot, LimitsSignsAndBadInput) {
 TEST(SpeedController, FeedforwardAndPiReachTheSpeed) {
   gc::SpeedControllerParams sp;
   gc::SpeedController s(sp);
-  EXPECT_NEAR(s.feedforward(4.0), 46.0, 1e-12);
-  EXPECT_NEAR(s.feedforward(9.0), 103.5, 1e-12);  // linear extrapolation
+  EXPECT_NEAR(s.feedforward(4.0), 52.7, 1e-9);
+  EXPECT_NEAR(s.feedforward(9.0), 118.575, 1e-9);  // linear extrapolation
   // Plant whose calm-water rpm map is 10 % off the controller's: the PI removes the offset.
   gc::test::NomotoPlant plant;
-  plant.rpm_per_mps = 12.65;
+  plant.rpm_per_mps = 1.1 * 13.175;
   plant.u = 3.0;
-  s.reset(34.5);
+  s.reset(3.0 * 13.175);
   const double dt = 1.0;
   double max_u = 0.0;
   for (int i = 0; i < 3000; ++i) {

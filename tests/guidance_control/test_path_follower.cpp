@@ -87,13 +87,26 @@ TEST(CheckPath, RejectsBadInput) {
 
 TEST(PathFollower, JoinsNewPathAtTheNearestLegAhead) {
   const std::vector<gc::PathPoint> path{{0, 0}, {3000, 0}, {3000, 3000}, {6000, 3000}, {6000, 6000}};
-  // The plan starts behind the ship (planned from where it was a while ago): not back to wp 1.
-  EXPECT_EQ(gc::PathFollower::join_leg(path, 2000, 30, 640), 1u);
-  EXPECT_EQ(gc::PathFollower::join_leg(path, 2500, 0, 640), 2u);  // inside wp 1's circle: next leg
-  EXPECT_EQ(gc::PathFollower::join_leg(path, 3100, 1500, 640), 2u);
-  EXPECT_EQ(gc::PathFollower::join_leg(path, 4500, 3050, 640), 3u);
-  EXPECT_EQ(gc::PathFollower::join_leg(path, 9000, 9000, 640), 4u);  // past everything: last leg
-  EXPECT_EQ(gc::PathFollower::join_leg(path, -500, 0, 640), 1u);      // before the start
+  EXPECT_EQ(gc::PathFollower::join_leg(path, 2000, 30), 1u);
+  EXPECT_EQ(gc::PathFollower::join_leg(path, 3100, 1500), 2u);
+  EXPECT_EQ(gc::PathFollower::join_leg(path, 4500, 3050), 3u);
+  EXPECT_EQ(gc::PathFollower::join_leg(path, 9000, 9000), 4u);  // past everything: last leg
+  EXPECT_EQ(gc::PathFollower::join_leg(path, -500, 0), 1u);      // before the start
+  // The first leg's end is "ahead" along-track but 9 km abeam: the nearest leg is the last one.
+  EXPECT_EQ(gc::PathFollower::join_leg(path, 2900, 9000), 4u);
+  auto active_after_join = [&](double x, double y) {
+    gc::PathFollowerParams p;
+    p.acceptance_radius = 640;
+    gc::PathFollower f(p);
+    f.set_path(path, x, y);
+    return f.update(x, y, 7.0, 0.0);
+  };
+  // The plan starts behind the ship (planned from where it was a while ago): not back to wp 0.
+  EXPECT_EQ(active_after_join(2000, 30).active_waypoint, 1u);
+  EXPECT_EQ(active_after_join(2500, 0).active_waypoint, 2u);  // inside wp 1's circle: next leg at once
+  const auto done = active_after_join(6100, 6400);             // beyond the end: arrived, no turn back
+  EXPECT_TRUE(done.arrived);
+  EXPECT_EQ(done.active_waypoint, 4u);
 }
 
 // Replacing the plan with one that runs along the same line gives the same desired heading: the

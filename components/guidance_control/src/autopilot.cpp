@@ -140,16 +140,17 @@ double SpeedController::update(double u_d, double u, double dt) {
 }
 
 HeadingAutopilotParams tune_heading_pid(const NomotoModel& m, double omega_n, double zeta,
-                                        const HeadingAutopilotParams& base) {
+                                        const HeadingAutopilotParams& base, double integral_ratio) {
   require(finite_pos(m.K), "tune_heading_pid: Nomoto K must be finite and > 0");
   require(finite_pos(m.T), "tune_heading_pid: Nomoto T must be finite and > 0");
   require(finite_pos(omega_n), "tune_heading_pid: omega_n must be finite and > 0");
   require(finite_pos(zeta), "tune_heading_pid: zeta must be finite and > 0");
+  require(finite_pos(integral_ratio), "tune_heading_pid: integral_ratio must be finite and > 0");
   HeadingAutopilotParams p = base;
   p.kp = m.T * omega_n * omega_n / m.K;
   p.kd = (2.0 * zeta * omega_n * m.T - 1.0) / m.K;
   require(p.kd >= 0.0, "tune_heading_pid: kd < 0: omega_n is below 1/(2 zeta T) for this hull; raise omega_n");
-  p.ki = omega_n * p.kp / 10.0;
+  p.ki = omega_n * p.kp / integral_ratio;
   p.validate();
   return p;
 }

@@ -21,6 +21,7 @@ void PathFollowerParams::validate() const {
   require(std::isfinite(integral_gain) && integral_gain > 0.0 && integral_gain < 1.0, "integral_gain",
           "must be in (0, 1)");
   require(std::isfinite(integral_limit) && integral_limit >= 0.0, "integral_limit", "must be finite and >= 0 m");
+  require(std::isfinite(integral_zone) && integral_zone > 0.0, "integral_zone", "must be finite and > 0 m");
   require(std::isfinite(default_speed) && default_speed > 0.0, "default_speed", "must be finite and > 0 m/s");
   require(std::isfinite(max_speed) && max_speed >= default_speed, "max_speed", "must be finite and >= default_speed");
 }
@@ -77,16 +78,16 @@ void PathFollower::clear() {
   arrived_ = false;
 }
 
-std::size_t PathFollower::join_leg(const std::vector<PathPoint>& pts, double x, double y, double acceptance_radius) {
-  const std::size_t n = pts.size();
-  std::size_t best = n - 1;  // every end waypoint passed: the last leg (arrival follows at once)
+std::size_t PathFollower::join_leg(const std::vector<PathPoint>& pts, double x, double y) {
+  // Nearest segment, not "nearest leg whose end is ahead": a leg far abeam can have its end ahead in
+  // the along-track sense (e.g. the first leg of a plan re-sent after the ship has turned the corner).
+  std::size_t best = 1;
   double best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 1; k < n; ++k) {
+  for (std::size_t k = 1; k < pts.size(); ++k) {
     const LegGeometry g = leg_geometry(pts[k - 1], pts[k], x, y);
-    // A leg whose end the ship has passed or already reached would be switched away at once.
-    const bool end_ahead = g.along < g.length && (g.to_end > acceptance_radius || k == n - 1);
-    if (!end_ahead) continue;
-    const double d = g.along < 0.0 ? std::hypot(x - pts[k - 1].x, y - pts[k - 1].y) : std::abs(g.cross);
+    const double d = g.along < 0.0 ? std::hypot(x - pts[k - 1].x, y - pts[k - 1].y)
+                     : g.along > g.length ? g.to_end
+                                          : std::abs(g.cross);
     if (d < best_d - 1.0) {  // 1 m hysteresis: on ties the earlier leg wins (the path is flown in order)
       best_d = d;
       best = k;
@@ -100,7 +101,7 @@ void PathFollower::set_path(const std::vector<PathPoint>& pts, double x, double 
   if (!why.empty()) throw std::invalid_argument("PathFollower::set_path: " + why);
   if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("PathFollower::set_path: non-finite ship position");
   pts_ = drop_duplicate_points(pts);
-  active_ = join_leg(pts_, x, y, p_.acceptance_radius);
+  active_ = join_leg(pts_, x, y);
   arrived_ = false;
 }
 
@@ -145,7 +146,7 @@ GuidanceOutput PathFollower::update(double x, double y, double speed, double dt)
     const double ee = g.cross + kappa * y_int_;
     chi_d = g.course - std::atan(ee / delta);
     // Integrate only near the path: far off it (turns, joins) the error is geometry, not current.
-    if (std::abs(g.cross) < delta) y_int_ += dt * std::abs(speed) * delta * g.cross / (ee * ee + delta * delta);
+    if (std::abs(g.cross) < p_.integral_zone) y_int_ += dt * std::abs(speed) * delta * g.cross / (ee * ee + delta * delta);
     const double lim = p_.integral_limit / kappa;
     y_int_ = std::clamp(y_int_, -lim, lim);
   } else {

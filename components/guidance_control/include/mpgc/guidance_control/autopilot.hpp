@@ -8,11 +8,13 @@
 
 namespace mpgc::guidance_control {
 
-// Defaults: KVLCC2 at about 7 m/s, tuned with tune_heading_pid (README.md "Tuning").
+// Defaults: KVLCC2 (simulator's MMG model) at 7 m/s, Nomoto fit K = 0.033 1/s, T = 75 s, pole
+// placement with omega_n = 0.04 rad/s, zeta = 1, integral_ratio 20 (README.md "Tuning"; test
+// Kvlcc2.NomotoFitAndDefaultGainsFromIt checks the defaults still match the model).
 struct HeadingAutopilotParams {
-  double kp = 2.5;                 // [rad/rad] rudder per heading error
-  double ki = 0.0025;              // [1/s] rudder per integrated heading error
-  double kd = 110.0;               // [s] rudder per yaw rate (derivative on the measurement)
+  double kp = 3.7;                 // [rad/rad] rudder per heading error
+  double ki = 0.0075;              // [1/s] rudder per integrated heading error
+  double kd = 150.0;               // [s] rudder per yaw rate (derivative on the measurement)
   double max_rudder = 0.6109;      // [rad] rudder angle limit (35 deg)
   double max_rudder_rate = 0.0401; // [rad/s] rudder rate limit (2.3 deg/s, KVLCC2 steering gear)
   double integral_limit = 0.1745;  // [rad] bound of the integral's rudder contribution (10 deg)
@@ -38,16 +40,17 @@ class HeadingAutopilot {
   double last_ = 0.0;
 };
 
-// Defaults: KVLCC2 (MARIN free-running tests: 15.5 kn at about 92 rpm; rpm roughly proportional to
-// speed for a fixed-pitch propeller at constant advance ratio).
+// Defaults: the simulator's KVLCC2 MMG model, whose self-propulsion rpm is 13.17 rpm per m/s
+// (105.4 rpm at 8 m/s; MARIN's model tests needed ~92 rpm at 15.5 kn with a different propeller):
+// rpm is proportional to speed for a fixed-pitch propeller at constant advance ratio.
 struct SpeedControllerParams {
   std::vector<double> map_speed{0.0, 8.0};  // [m/s] speed -> rpm map: speeds, strictly increasing
-  std::vector<double> map_rpm{0.0, 92.0};   // [1/min] rpm at those speeds in calm water
+  std::vector<double> map_rpm{0.0, 105.4};  // [1/min] rpm at those speeds in calm water
   double kp = 8.0;                          // [rpm/(m/s)] proportional gain on the speed error
   double ki = 0.04;                         // [rpm/m] integral gain (kp / ki ~ surge time constant)
   double integral_limit = 20.0;             // [1/min] bound of the integral's contribution
   double min_rpm = 0.0;                     // [1/min] lowest command (0: no astern from this loop)
-  double max_rpm = 100.0;                   // [1/min] highest command
+  double max_rpm = 130.0;                   // [1/min] highest command
   double max_rpm_rate = 2.0;                // [1/min/s] slew limit of the command
   void validate() const;                    // throws std::invalid_argument naming the bad field
 };
@@ -82,10 +85,12 @@ struct NomotoModel {
 
 // Pole placement (Fossen 2011, section 15.3): with delta = -(kp e + kd r + ki int e) the closed loop
 // T psi'' + (1 + K kd) psi' + K kp psi = K kp psi_d has natural frequency omega_n and damping zeta when
-//   kp = T omega_n^2 / K,  kd = (2 zeta omega_n T - 1) / K,  ki = omega_n kp / 10.
-// Limits are copied from `base`. Throws std::invalid_argument for K <= 0, T <= 0, omega_n <= 0 or
-// zeta <= 0, or when kd would be negative (omega_n too low for this hull: raise it).
+//   kp = T omega_n^2 / K,  kd = (2 zeta omega_n T - 1) / K,  ki = omega_n kp / integral_ratio
+// (Fossen's rule of thumb is integral_ratio = 10; 20 halves the overshoot the integral's zero adds to
+// small steps). Limits are copied from `base`. Throws std::invalid_argument for K <= 0, T <= 0,
+// omega_n <= 0, zeta <= 0 or integral_ratio <= 0, or when kd would be negative (omega_n too low for
+// this hull: raise it).
 HeadingAutopilotParams tune_heading_pid(const NomotoModel& m, double omega_n, double zeta,
-                                        const HeadingAutopilotParams& base = {});
+                                        const HeadingAutopilotParams& base = {}, double integral_ratio = 10.0);
 
 }  // namespace mpgc::guidance_control

@@ -30,10 +30,12 @@ struct PathPoint {
 // Defaults are for KVLCC2 (Lpp = 320 m, tactical diameter ~3.2 Lpp at 35 deg rudder): see README.md.
 struct PathFollowerParams {
   double lookahead = 800.0;          // [m] LOS lookahead distance Delta (2.5 Lpp)
-  double acceptance_radius = 640.0;  // [m] radius of the circle of acceptance around a waypoint (2 Lpp)
+  double acceptance_radius = 800.0;  // [m] radius of the circle of acceptance around a waypoint (2.5 Lpp)
   bool integral = true;              // ILOS: integral action against current and wind
-  double integral_gain = 0.3;        // [-] ILOS kappa (0 < kappa < 1 keeps the integral well damped)
+  double integral_gain = 0.2;        // [-] ILOS kappa (0 < kappa < 1 keeps the integral well damped)
   double integral_limit = 400.0;     // [m] |kappa * y_int| bound (limits the crab angle it can build)
+  double integral_zone = 200.0;      // [m] integrate only while |cross-track| < this: joining a path from
+                                     // far off is geometry, not current, and would wind the integral up
   double default_speed = 7.0;        // [m/s] used where a waypoint carries no speed (<= 0)
   double max_speed = 12.0;           // [m/s] planned speeds above this are clamped
   void validate() const;  // throws std::invalid_argument naming the bad field
@@ -73,8 +75,9 @@ class PathFollower {
   explicit PathFollower(const PathFollowerParams& p);
 
   // Starts following `pts` (validated with check_path; throws std::invalid_argument otherwise)
-  // from the ship position (x, y): the active leg is the nearest leg whose end waypoint is still
-  // ahead of the ship. The ILOS integral is kept, since the current does not change with the plan.
+  // from the ship position (x, y): the active leg is the leg nearest to the ship (the first one on a
+  // tie); the first update then moves on past legs whose end the ship has already reached or passed.
+  // The ILOS integral is kept, since the current does not change with the plan.
   void set_path(const std::vector<PathPoint>& pts, double x, double y);
   bool has_path() const { return !pts_.empty(); }
   void clear();
@@ -83,8 +86,8 @@ class PathFollower {
   // scales the ILOS integral rate), over the time step dt [s].
   GuidanceOutput update(double x, double y, double speed, double dt);
 
-  // The active leg (index of its end waypoint) chosen for a path from (x, y), as set_path does.
-  static std::size_t join_leg(const std::vector<PathPoint>& pts, double x, double y, double acceptance_radius);
+  // The leg (index of its end waypoint) nearest to (x, y), as set_path chooses it.
+  static std::size_t join_leg(const std::vector<PathPoint>& pts, double x, double y);
 
   const std::vector<PathPoint>& path() const { return pts_; }
   std::size_t active_waypoint() const { return active_; }
