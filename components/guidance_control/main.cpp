@@ -21,7 +21,7 @@ struct Params {
   gc::GuidanceControlParams gc;
   double rate = 2.0;  // [Hz] control cycle
   std::string speed_map;
-  double nomoto_K = 0.0, nomoto_T = 0.0, omega_n = 0.0, zeta = 0.0;
+  double nomoto_K = 0.0, nomoto_T = 0.0, omega_n = 0.0, zeta = 1.0, integral_ratio = 20.0;
 };
 
 void declare(mpgc::rt::ParamSet& ps, Params& p) {
@@ -30,12 +30,14 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   auto& h = p.gc.heading;
   auto& s = p.gc.speed;
   ps.add("rate", &p.rate, 2.0, "Hz", 0.1, 50.0, "control cycle: actuator commands and status per second");
-  ps.add("los.lookahead", &f.lookahead, d.follower.lookahead, "m", 10.0, 1e5, "LOS lookahead distance (KVLCC2: 2.5 Lpp)");
+  ps.add("los.lookahead", &f.lookahead, d.follower.lookahead, "m", 10.0, 1e5, "LOS lookahead distance (default 2.5 Lpp of KVLCC2)");
   ps.add("los.acceptance_radius", &f.acceptance_radius, d.follower.acceptance_radius, "m", 1.0, 1e5,
-         "circle of acceptance around a waypoint (KVLCC2: 2 Lpp)");
+         "circle of acceptance around a waypoint (default 2.5 Lpp of KVLCC2)");
   ps.add("los.integral", &f.integral, d.follower.integral, "ILOS: integral action against current");
   ps.add("los.integral_gain", &f.integral_gain, d.follower.integral_gain, "-", 0.01, 0.99, "ILOS kappa");
   ps.add("los.integral_limit", &f.integral_limit, d.follower.integral_limit, "m", 0.0, 1e5, "bound of kappa * y_int");
+  ps.add("los.integral_zone", &f.integral_zone, d.follower.integral_zone, "m", 1.0, 1e5,
+         "ILOS integrates only while |cross-track| < this (> lookahead * current / speed)");
   ps.add("los.default_speed", &f.default_speed, d.follower.default_speed, "m/s", 0.1, 30.0,
          "speed where a waypoint carries none");
   ps.add("los.max_speed", &f.max_speed, d.follower.max_speed, "m/s", 0.1, 30.0, "planned speeds are clamped to this");
@@ -51,7 +53,9 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
          "if > 0: compute kp, ki, kd by pole placement from Nomoto K, T, omega_n, zeta (README)");
   ps.add("heading.nomoto_T", &p.nomoto_T, 0.0, "s", 0.0, 1e4, "Nomoto time constant for pole placement");
   ps.add("heading.omega_n", &p.omega_n, 0.0, "rad/s", 0.0, 10.0, "closed-loop natural frequency for pole placement");
-  ps.add("heading.zeta", &p.zeta, 0.9, "-", 0.1, 5.0, "closed-loop damping for pole placement");
+  ps.add("heading.zeta", &p.zeta, 1.0, "-", 0.1, 5.0, "closed-loop damping for pole placement");
+  ps.add("heading.integral_ratio", &p.integral_ratio, 20.0, "-", 1.0, 1000.0,
+         "pole placement: ki = omega_n kp / integral_ratio (Fossen: 10)");
   ps.add("speed.map", &p.speed_map, gc::format_speed_map(d.speed), "speed:rpm pairs [m/s]:[1/min], calm-water feed-forward");
   ps.add("speed.kp", &s.kp, d.speed.kp, "rpm/(m/s)", 0.0, 1000.0, "speed PI proportional gain");
   ps.add("speed.ki", &s.ki, d.speed.ki, "rpm/m", 0.0, 100.0, "speed PI integral gain");
@@ -100,7 +104,8 @@ int main(int argc, char** argv) {
   declare(ps, p);
   return mpgc::rt::run_component("guidance_control", argc, argv, ps, [&](mpgc::rt::Component& c) {
     gc::parse_speed_map(p.speed_map, p.gc.speed);
-    if (p.nomoto_K > 0.0) p.gc.heading = gc::tune_heading_pid({p.nomoto_K, p.nomoto_T}, p.omega_n, p.zeta, p.gc.heading);
+    if (p.nomoto_K > 0.0)
+      p.gc.heading = gc::tune_heading_pid({p.nomoto_K, p.nomoto_T}, p.omega_n, p.zeta, p.gc.heading, p.integral_ratio);
     c.log().info("heading PID kp={:.3f} ki={:.5f} kd={:.1f}; speed map {}", p.gc.heading.kp, p.gc.heading.ki,
                  p.gc.heading.kd, gc::format_speed_map(p.gc.speed));
     auto ctl = std::make_shared<gc::GuidanceController>(p.gc);  // validates every field
