@@ -136,29 +136,6 @@ Track& Tracker::start_track(const Vec4& x, const Mat4& P, int64_t t_ns) {
   return tracks_.back();
 }
 
-Tracker::Innovation Tracker::innovation(const Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& H,
-                                        const Eigen::MatrixXd& R, int64_t t_ns) const {
-  const double dt = static_cast<double>(t_ns - t.t_ns) * kNsToS;
-  Innovation in;
-  if (dt >= 0.0) {
-    const Mat4 F = cv_transition(dt);
-    const Vec4 xp = F * t.x;
-    const Mat4 Pp = F * t.P * F.transpose() + cv_process_noise(dt, p_.process_noise);
-    in.H = H;
-    in.nu = z - H * xp;
-    in.S = H * Pp * H.transpose() + R;
-  } else {
-    // Out-of-sequence measurement: map it to the current state through the backward transition
-    // and add the process noise of the lag to its covariance (Bar-Shalom's approximate
-    // retrodiction, neglecting the noise/state cross-correlation; fine for lags of seconds).
-    in.H = H * cv_transition(dt);
-    const Eigen::MatrixXd Rb = R + H * cv_process_noise(dt, p_.process_noise) * H.transpose();
-    in.nu = z - in.H * t.x;
-    in.S = in.H * t.P * in.H.transpose() + Rb;
-  }
-  return in;
-}
-
 void Tracker::update(Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& H, const Eigen::MatrixXd& R,
                      int64_t t_ns) {
   const double dt = static_cast<double>(t_ns - t.t_ns) * kNsToS;
@@ -169,6 +146,9 @@ void Tracker::update(Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& 
     t.P = F * t.P * F.transpose() + cv_process_noise(dt, p_.process_noise);
     t.t_ns = t_ns;
   } else {
+    // Out-of-sequence measurement: map it to the current state through the backward transition
+    // and add the process noise of the lag to its covariance (Bar-Shalom's approximate
+    // retrodiction, neglecting the noise/state cross-correlation; fine for lags of seconds).
     Hx = H * cv_transition(dt);
     Rx = R + H * cv_process_noise(dt, p_.process_noise) * H.transpose();
   }
@@ -230,12 +210,17 @@ std::vector<Rejection> Tracker::add_ais(const AisInput& r, int64_t receive_ns) {
   if (!trk) {
     // A ship seen by radar before its first AIS report: fuse with the radar-only track whose
     // predicted position gates best (position only; the radar track's velocity may be poor).
-    const Eigen::MatrixXd Hp = Eigen::MatrixXd::Identity(2, 4);
+    // Fixed-size 2x2 arithmetic: this runs over every radar-only track for each new MMSI.
     double best = p_.gate;
+    const Vec2 zp(z(0), z(1));
+    const Mat2 Rp = R.topLeftCorner(2, 2);
     for (Track& t : tracks_) {
       if (t.mmsi != 0) continue;
-      const Innovation in = innovation(t, z.head(2), Hp, R.topLeftCorner(2, 2), r.stamp_ns);
-      const double d2 = in.nu.dot(in.S.ldlt().solve(in.nu));
+      const double dt = static_cast<double>(r.stamp_ns - t.t_ns) * kNsToS;
+      const Mat4 F = cv_transition(dt);
+      const Vec2 nu = zp - (F * t.x).head<2>();
+      const Mat2 S = (F * t.P * F.transpose() + cv_process_noise(dt, p_.process_noise)).topLeftCorner<2, 2>() + Rp;
+      const double d2 = nu.dot(S.inverse() * nu);
       if (d2 < best) best = d2, trk = &t;
     }
   }

@@ -144,14 +144,9 @@ class Tracker {
   bool check_time(int64_t stamp_ns, int64_t receive_ns, const char* what, std::vector<Rejection>& why);
   void refuse(std::vector<Rejection>& why, const std::string& key, const std::string& detail);
   Track& start_track(const Vec4& x, const Mat4& P, int64_t t_ns);
-  // Innovation of a linear measurement z = H x (+ noise R) taken at t_ns, for the track's state
-  // (predicted forward, or retrodicted when t_ns is older than the state: out-of-sequence).
-  struct Innovation {
-    Eigen::VectorXd nu;
-    Eigen::MatrixXd H, S;
-  };
-  Innovation innovation(const Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& H,
-                        const Eigen::MatrixXd& R, int64_t t_ns) const;
+  // Kalman update with a linear measurement z = H x (+ noise R) taken at t_ns: the state is
+  // predicted forward to t_ns, or, when t_ns is older than the state (out-of-sequence), the
+  // measurement is mapped to the current state by retrodiction.
   void update(Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& H, const Eigen::MatrixXd& R,
               int64_t t_ns);
   void delete_stale(int64_t t_ns);
