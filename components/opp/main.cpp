@@ -49,6 +49,8 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("plan.max_iterations", &q.max_iterations, 20000, "-", 1, 10000000, "RRT* iterations per plan");
   ps.add("plan.compliant_share", &q.compliant_share, 0.5, "-", 0.01, 1.0,
          "budget share after which a compliant pass without any solution is relaxed");
+  ps.add("plan.restart_after", &q.restart_after, 1000, "-", 0, 10000000,
+         "iterations without improvement before a fresh tree is grown (0 = never)");
   ps.add("plan.seed", &p.seed, 1, "-", 0, 2147483647, "base seed (plan k uses seed + k)");
   ps.add("plan.step", &q.step, 500.0, "m", 1.0, 1e5, "RRT* steer step");
   ps.add("plan.goal_bias", &q.goal_bias, 0.05, "-", 0.0, 1.0, "probability of sampling the goal");

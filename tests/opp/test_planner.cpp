@@ -94,6 +94,21 @@ TEST(Planner, CostNeverIncreasesWithMoreIterations) {
   }
 }
 
+TEST(Planner, RestartsKeepTheBestAndNeverIncreaseCost) {
+  auto s = opp::paper_scenario(1);
+  s.params.restart_after = 300;
+  s.params.max_iterations = 3000;
+  std::vector<double> best;
+  opp::Hooks h;
+  h.progress = [&](int, double c) { best.push_back(c); };
+  const auto r = opp::plan(s.problem, s.params, h);
+  ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+  EXPECT_GT(r.stats.restarts, 0);
+  for (size_t i = 1; i < best.size(); ++i) ASSERT_LE(best[i], best[i - 1]) << i;
+  EXPECT_DOUBLE_EQ(best.back(), r.cost.total);
+  expect_valid(s.problem, s.params, r);
+}
+
 TEST(Planner, SameSeedSamePathDifferentSeedDifferentPath) {
   const auto s = opp::paper_scenario(1);
   const auto a = run(s, 42, 1500), b = run(s, 42, 1500), c = run(s, 43, 1500);

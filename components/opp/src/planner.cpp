@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -59,6 +60,7 @@ void Params::validate() const {
   require(fin(step) && step > 0, "step", "must be finite and > 0");
   require(fin(goal_bias) && goal_bias >= 0 && goal_bias <= 1, "goal_bias", "must be in [0, 1]");
   require(fin(rewire_factor) && rewire_factor >= 1, "rewire_factor", "must be >= 1");
+  require(restart_after >= 0, "restart_after", "must be >= 0");
   require(max_iterations >= 1 && max_iterations <= 10'000'000, "max_iterations", "must be in [1, 1e7]");
   require(fin(time_budget) && time_budget > 0, "time_budget", "must be finite and > 0");
   require(fin(compliant_share) && compliant_share > 0 && compliant_share <= 1, "compliant_share",
@@ -173,8 +175,8 @@ struct Rng {
 
 class Tree {
  public:
-  Tree(const Model& m, const Problem& pb, const Params& pr, Stats& st, const Hooks& hooks)
-      : m_(m), pb_(pb), pr_(pr), st_(st), hooks_(hooks), rng_(pr.seed) {
+  Tree(const Model& m, const Problem& pb, const Params& pr, Stats& st, const Hooks& hooks, uint64_t seed)
+      : m_(m), pb_(pb), pr_(pr), st_(st), hooks_(hooks), rng_(seed) {
     grid_.reset(pb.bounds.min_x, pb.bounds.min_y, pb.bounds.max_x, pb.bounds.max_y);
     nodes_.reserve(static_cast<size_t>(pr.max_iterations) + 64);
     const double dim = 2.0;
@@ -644,44 +646,66 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
     res.path = {{problem.start, 0.0}};
     return res;
   }
-  Tree tree(model, problem, params, res.stats, hooks);
-  tree.colreg = problem.colreg;
-  if (!warm.empty()) res.stats.warm_started = tree.seed_chain(warm_tail(warm, problem.start));
+  auto tree = std::make_unique<Tree>(model, problem, params, res.stats, hooks, params.seed);
+  tree->colreg = problem.colreg;
+  if (!warm.empty()) res.stats.warm_started = tree->seed_chain(warm_tail(warm, problem.start));
+  // Best over restarted trees (the incumbent survives a restart, so the cost stays monotone).
+  double best_cost = tree->best_cost();
+  std::vector<Vec2> best_pts = tree->best_path();
+  bool best_compliant = tree->best_is_compliant();
+  int last_improvement = 0;
   const int share_iter = static_cast<int>(std::ceil(params.compliant_share * params.max_iterations));
   const double share_time = params.compliant_share * params.time_budget;
   while (res.stats.iterations < params.max_iterations) {
     const double el = hooks.elapsed ? hooks.elapsed() - t0 : 0.0;
     if (hooks.elapsed && el >= params.time_budget) break;
     if (hooks.stop && hooks.stop()) break;
-    if (tree.colreg && !tree.solved() && (res.stats.iterations >= share_iter || (hooks.elapsed && el >= share_time))) {
+    if (tree->colreg && best_pts.empty() &&
+        (res.stats.iterations >= share_iter || (hooks.elapsed && el >= share_time))) {
       res.stats.iterations_compliant = res.stats.iterations;
-      tree.colreg = false;  // §6: relax; the compliant tree stays valid under the weaker constraint
+      tree->colreg = false;  // §6: relax; the compliant tree stays valid under the weaker constraint
     }
-    tree.iterate();
-    if (hooks.progress) hooks.progress(res.stats.iterations, tree.best_cost());
+    // A tree whose solution has not improved for restart_after iterations is stuck in one timing
+    // of the targets (the time at a node is fixed by its path): start a fresh tree.
+    if (params.restart_after > 0 && !best_pts.empty() && res.stats.iterations - last_improvement >= params.restart_after) {
+      const bool colreg = tree->colreg;
+      ++res.stats.restarts;
+      tree = std::make_unique<Tree>(model, problem, params, res.stats, hooks,
+                                    params.seed + 0x9E3779B97F4A7C15ULL * static_cast<uint64_t>(res.stats.restarts));
+      tree->colreg = colreg;
+      last_improvement = res.stats.iterations;
+    }
+    tree->iterate();
+    if (tree->best_cost() < best_cost) {
+      best_cost = tree->best_cost();
+      best_pts = tree->best_path();
+      best_compliant = tree->best_is_compliant();
+      last_improvement = res.stats.iterations;
+    }
+    if (hooks.progress) hooks.progress(res.stats.iterations, best_cost);
   }
-  if (tree.colreg) res.stats.iterations_compliant = res.stats.iterations;
-  res.stats.nodes = tree.size();
+  if (tree->colreg) res.stats.iterations_compliant = res.stats.iterations;
+  res.stats.nodes = tree->size();
   res.stats.planning_time = hooks.elapsed ? hooks.elapsed() - t0 : 0.0;
   if (res.stats.first_solution_time >= 0) res.stats.first_solution_time -= t0;
-  if (!tree.solved()) {
-    const uint64_t* r = tree.rejects();
+  if (best_pts.empty()) {
+    const uint64_t* r = tree->rejects();
     std::ostringstream os;
     os << "no path within " << res.stats.iterations << " iterations";
     if (hooks.elapsed) os << " / " << fmt(res.stats.planning_time) << " s";
-    os << " (" << tree.size() << " nodes; ";
-    if (tree.goal_attempts() == 0)
-      os << "the tree never came within one step of the goal, closest " << fmt(tree.closest_to_goal()) << " m";
+    os << " (" << tree->size() << " nodes; ";
+    if (tree->goal_attempts() == 0)
+      os << "the tree never came within one step of the goal, closest " << fmt(tree->closest_to_goal()) << " m";
     else
-      os << tree.goal_attempts() << " goal connections tried";
+      os << tree->goal_attempts() << " goal connections tried";
     os << "; edges rejected: fixed obstacles " << r[Model::kFixed] << ", targets " << r[Model::kTarget] << ", turn "
        << r[Model::kTurn] << ", COLREG " << r[Model::kColreg] << ", arrival heading " << r[Model::kGoalHeading] << ")";
     res.status = Status::kNoPath;
     res.reason = os.str();
     return res;
   }
-  std::vector<Vec2> pts = tree.best_path();
-  res.relaxed = problem.colreg && !tree.best_is_compliant();
+  const std::vector<Vec2>& pts = best_pts;
+  res.relaxed = problem.colreg && !best_compliant;
   res.status = res.relaxed ? Status::kRelaxed : Status::kOk;
   if (res.relaxed) res.reason = "no COLREG-compliant path within the compliant budget share; constraint relaxed";
   res.colreg_compliant = check_path(problem, params, pts, true).empty();

@@ -69,6 +69,8 @@ struct Params {
   double rewire_factor = 1.1;          // [-] scales k_rrt (or r_rrt) as in OMPL
   bool k_nearest = true;               // k-nearest (true) or radius neighbourhood
   bool connect_goal = true;            // try an edge to the goal from every new node within step
+  int restart_after = 0;               // [-] iterations without improvement after which a fresh tree
+                                       //     is grown (best kept); 0 = one tree (plain RRT*)
   // Budgets.
   int max_iterations = 20000;          // [-] per plan (both passes together)
   double time_budget = 0.5;            // [s] per plan, measured with Hooks::elapsed (if given)
@@ -105,6 +107,7 @@ struct Stats {
   double planning_time = 0.0;    // [s] by Hooks::elapsed
   uint64_t edge_checks = 0;      // [-] full edge validity checks
   int rewires = 0;               // [-]
+  int restarts = 0;              // [-] fresh trees grown (Params::restart_after)
   bool warm_started = false;
 };
 
