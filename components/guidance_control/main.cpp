@@ -61,6 +61,8 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("speed.ki", &s.ki, d.speed.ki, "rpm/m", 0.0, 100.0, "speed PI integral gain");
   ps.add("speed.integral_limit", &s.integral_limit, d.speed.integral_limit, "1/min", 0.0, 1000.0,
          "bound of the integral's contribution");
+  ps.add("speed.integral_zone", &s.integral_zone, d.speed.integral_zone, "m/s", 0.001, 100.0,
+         "speed PI integrates only while |speed error| < this");
   ps.add("speed.min_rpm", &s.min_rpm, d.speed.min_rpm, "1/min", -1000.0, 1000.0, "lowest rpm command");
   ps.add("speed.max_rpm", &s.max_rpm, d.speed.max_rpm, "1/min", 0.0, 1000.0, "highest rpm command");
   ps.add("speed.max_rpm_rate", &s.max_rpm_rate, d.speed.max_rpm_rate, "1/min/s", 0.01, 1000.0, "rpm slew limit");

@@ -278,3 +278,32 @@ TEST(Kvlcc2, NoPathSafeModeHoldsHeadingAndSlows) {
   EXPECT_LT(rad2deg(late_dev), 1.0);  // decelerating from 7 to 3 m/s the hull's K drops
   EXPECT_NEAR(L.ship.state().u, L.params.safe_speed, 0.5);
 }
+
+// Speed control on rpm with the default PI: 7 -> 5 -> 7 m/s on a straight course, with the exact
+// map and with a map 10 % short of the rpm the hull needs (fouling, shallow water).
+TEST(Kvlcc2, SpeedStepsWithDefaultGains) {
+  for (double map_error : {1.0, 1.1}) {
+    auto m = kvlcc2_at(kU0);
+    gc::SpeedControllerParams sp;
+    for (auto& n : sp.map_rpm) n /= map_error;
+    gc::SpeedController sc{sp};
+    sc.reset(m.state().rpm);
+    const double dt = 0.5;
+    for (double target : {5.0, 7.0}) {
+      const double start = m.state().u;
+      double peak_dev = 0.0, t90 = -1.0;
+      for (double t = 0.0; t < 3000.0; t += dt) {
+        const auto& s = m.state();
+        m.step(dt, {0.0, sc.update(target, s.u, dt)});
+        const double u = m.state().u;
+        if (t90 < 0 && std::abs(u - target) < 0.1 * std::abs(target - start)) t90 = t + dt;
+        if (t90 >= 0) peak_dev = std::max(peak_dev, (u - target) * (target > start ? 1.0 : -1.0));
+      }
+      std::printf("[figure] KVLCC2 speed step %.1f -> %.1f m/s (map x%.1f): 90 %% reached after %.0f s, "
+                  "overshoot %.3f m/s, final %.3f m/s\n", start, target, 1.0 / map_error, t90, peak_dev, m.state().u);
+      EXPECT_GT(t90, 0.0);
+      EXPECT_LT(peak_dev, 0.2);
+      EXPECT_NEAR(m.state().u, target, 0.03);
+    }
+  }
+}

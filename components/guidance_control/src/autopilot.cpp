@@ -61,6 +61,7 @@ void SpeedControllerParams::validate() const {
   require(finite_nonneg(kp), "SpeedControllerParams.kp must be finite and >= 0");
   require(finite_nonneg(ki), "SpeedControllerParams.ki must be finite and >= 0");
   require(finite_nonneg(integral_limit), "SpeedControllerParams.integral_limit must be finite and >= 0");
+  require(finite_pos(integral_zone), "SpeedControllerParams.integral_zone must be finite and > 0");
   require(std::isfinite(min_rpm) && std::isfinite(max_rpm) && max_rpm > min_rpm,
           "SpeedControllerParams.max_rpm must be finite and > min_rpm");
   require(finite_pos(max_rpm_rate), "SpeedControllerParams.max_rpm_rate must be finite and > 0");
@@ -129,7 +130,9 @@ double SpeedController::update(double u_d, double u, double dt) {
   if (!std::isfinite(u_d) || !std::isfinite(u) || !std::isfinite(dt) || dt < 0.0)
     throw std::invalid_argument("SpeedController::update: non-finite input or negative dt");
   const double e = u_d - u;
-  const double i_next = std::clamp(integral_ + p_.ki * e * dt, -p_.integral_limit, p_.integral_limit);
+  const double i_next = std::abs(e) < p_.integral_zone
+                            ? std::clamp(integral_ + p_.ki * e * dt, -p_.integral_limit, p_.integral_limit)
+                            : integral_;
   const double cmd = feedforward(u_d) + p_.kp * e + i_next;
   double out = std::clamp(cmd, p_.min_rpm, p_.max_rpm);
   out = std::clamp(out, last_ - p_.max_rpm_rate * dt, last_ + p_.max_rpm_rate * dt);

@@ -46,9 +46,11 @@ class HeadingAutopilot {
 struct SpeedControllerParams {
   std::vector<double> map_speed{0.0, 8.0};  // [m/s] speed -> rpm map: speeds, strictly increasing
   std::vector<double> map_rpm{0.0, 105.4};  // [1/min] rpm at those speeds in calm water
-  double kp = 8.0;                          // [rpm/(m/s)] proportional gain on the speed error
-  double ki = 0.04;                         // [rpm/m] integral gain (kp / ki ~ surge time constant)
+  double kp = 30.0;                         // [rpm/(m/s)] proportional gain on the speed error
+  double ki = 0.04;                         // [rpm/m] integral gain (tuned on the KVLCC2 MMG model)
   double integral_limit = 20.0;             // [1/min] bound of the integral's contribution
+  double integral_zone = 0.3;               // [m/s] integrate only while |speed error| < this: a tanker's
+                                            // slow speed change would otherwise wind the integral up
   double min_rpm = 0.0;                     // [1/min] lowest command (0: no astern from this loop)
   double max_rpm = 130.0;                   // [1/min] highest command
   double max_rpm_rate = 2.0;                // [1/min/s] slew limit of the command
