@@ -1,0 +1,635 @@
+#include "mpgc/scenario_runner/evaluation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+namespace mpgc::scenario_runner {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::size_t kMaxSamples = 50'000'000;  // far beyond any run; guards against garbage sizes
+
+[[noreturn]] void bad(const std::string& what) { throw std::invalid_argument("RunRecord: " + what); }
+
+bool finite(const ShipState& s) {
+  return std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.heading) && std::isfinite(s.cog) &&
+         std::isfinite(s.sog);
+}
+
+void check_track(const ShipTrack& tr, const std::string& name, std::size_t n) {
+  if (!(std::isfinite(tr.length) && tr.length > 0.0)) bad(name + ".length must be finite and > 0");
+  if (tr.states.size() != n)
+    bad(name + ".states has " + std::to_string(tr.states.size()) + " samples, t has " + std::to_string(n));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!finite(tr.states[i])) bad(name + ".states[" + std::to_string(i) + "] is not finite");
+}
+
+// --- geometry -----------------------------------------------------------------------------------
+
+double dist(const Point2& a, const Point2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// Distance from p to segment ab.
+double point_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double l2 = dx * dx + dy * dy;
+  double u = l2 > 0.0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / l2 : 0.0;
+  u = std::clamp(u, 0.0, 1.0);
+  return std::hypot(p.x - (a.x + u * dx), p.y - (a.y + u * dy));
+}
+
+double cross(const Point2& o, const Point2& a, const Point2& b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+bool segments_intersect(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+  const double d1 = cross(c, d, a), d2 = cross(c, d, b), d3 = cross(a, b, c), d4 = cross(a, b, d);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+  // Touching or collinear cases are covered by the endpoint distances being 0.
+  return false;
+}
+
+double segment_segment(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+  if (segments_intersect(a, b, c, d)) return 0.0;
+  return std::min({point_segment(a, c, d), point_segment(b, c, d), point_segment(c, a, b), point_segment(d, a, b)});
+}
+
+// Even-odd ray casting; points on the boundary may go either way (their distance is 0 anyway).
+bool inside(const Point2& p, const Polygon& poly) {
+  bool in = false;
+  const auto& v = poly.vertices;
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
+    if ((v[i].y > p.y) != (v[j].y > p.y) &&
+        p.x < (v[j].x - v[i].x) * (p.y - v[i].y) / (v[j].y - v[i].y) + v[i].x)
+      in = !in;
+  }
+  return in;
+}
+
+struct Box {
+  double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
+  void add(const Point2& p) {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
+  // Lower bound of the distance from anything inside `o` to anything inside this box.
+  double gap(const Box& o) const {
+    const double dx = std::max({0.0, x0 - o.x1, o.x0 - x1});
+    const double dy = std::max({0.0, y0 - o.y1, o.y0 - y1});
+    return std::hypot(dx, dy);
+  }
+};
+
+Box box_of(const Polygon& poly) {
+  Box b;
+  for (const auto& v : poly.vertices) b.add(v);
+  return b;
+}
+
+// Obstacles with their boxes, so that a query skips far polygons (charts have many).
+struct ObstacleIndex {
+  const FixedObstacles* obs;
+  std::vector<Box> boxes;
+  explicit ObstacleIndex(const FixedObstacles& o) : obs(&o) {
+    boxes.reserve(o.polygons.size());
+    for (const auto& p : o.polygons) boxes.push_back(box_of(p));
+  }
+  // Distance from segment ab (a point when a == b) to the nearest obstacle.
+  double segment_distance(const Point2& a, const Point2& b) const {
+    double best = kInf;
+    for (const auto& c : obs->circles) best = std::min(best, std::max(0.0, point_segment(c.centre, a, b) - c.radius));
+    Box sb;
+    sb.add(a), sb.add(b);
+    for (std::size_t k = 0; k < obs->polygons.size() && best > 0.0; ++k) {
+      if (boxes[k].gap(sb) >= best) continue;
+      const Polygon& poly = obs->polygons[k];
+      if (inside(a, poly) || inside(b, poly)) return 0.0;
+      const auto& v = poly.vertices;
+      for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
+        best = std::min(best, segment_segment(a, b, v[j], v[i]));
+    }
+    return best;
+  }
+};
+
+// Closest distance of two ships moving linearly between samples i and i+1 (exact for straight
+// segments), with the fraction of the interval where it happens.
+std::pair<double, double> closest_on_interval(const ShipState& o0, const ShipState& o1, const ShipState& t0,
+                                              const ShipState& t1) {
+  const double rx = t0.x - o0.x, ry = t0.y - o0.y;
+  const double dx = (t1.x - o1.x) - rx, dy = (t1.y - o1.y) - ry;
+  const double d2 = dx * dx + dy * dy;
+  double u = d2 > 0.0 ? -(rx * dx + ry * dy) / d2 : 0.0;
+  u = std::clamp(u, 0.0, 1.0);
+  return {std::hypot(rx + u * dx, ry + u * dy), u};
+}
+
+Point2 pos(const ShipState& s) { return {s.x, s.y}; }
+
+// Course over ground, or heading when (nearly) stopped, where the course is meaningless.
+double course(const ShipState& s) { return s.sog > 0.1 ? s.cog : s.heading; }
+
+colreg::ShipKinematics kin(const ShipState& s) {
+  return colreg::ShipKinematics::from_course(s.x, s.y, s.cog, s.sog, s.heading);
+}
+
+// Linear-interpolated percentile (q in [0, 1]) of a sorted, non-empty vector.
+double percentile(const std::vector<double>& sorted, double q) {
+  const double pos_ = q * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos_));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (pos_ - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+// Time within [t0, t1] where a linearly interpolated distance d0 -> d1 is below `limit`.
+double time_below(double t0, double t1, double d0, double d1, double limit) {
+  const bool b0 = d0 < limit, b1 = d1 < limit;
+  if (b0 && b1) return t1 - t0;
+  if (!b0 && !b1) return 0.0;
+  const double f = (limit - d0) / (d1 - d0);  // crossing fraction; d0 != d1 here
+  return b0 ? f * (t1 - t0) : (1.0 - f) * (t1 - t0);
+}
+
+Verdict verdict(bool ok) { return ok ? Verdict::kPass : Verdict::kFail; }
+
+}  // namespace
+
+// --- names ----------------------------------------------------------------------------------------
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::kNotApplicable: return "n/a";
+    case Verdict::kPass: return "pass";
+    case Verdict::kFail: return "fail";
+  }
+  return "?";
+}
+const char* to_string(Side s) {
+  switch (s) {
+    case Side::kNone: return "none";
+    case Side::kPort: return "port";
+    case Side::kStarboard: return "starboard";
+  }
+  return "?";
+}
+const char* to_string(colreg::Role r) {
+  switch (r) {
+    case colreg::Role::kNone: return "none";
+    case colreg::Role::kGiveWay: return "give-way";
+    case colreg::Role::kStandOn: return "stand-on";
+    case colreg::Role::kBothGiveWay: return "both-give-way";
+  }
+  return "?";
+}
+
+// --- validation -----------------------------------------------------------------------------------
+
+void RunRecord::validate() const {
+  const std::size_t n = t.size();
+  if (n == 0) bad("t is empty");
+  if (n > kMaxSamples) bad("t has " + std::to_string(n) + " samples (more than " + std::to_string(kMaxSamples) + ")");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(t[i])) bad("t[" + std::to_string(i) + "] is not finite");
+    if (i > 0 && !(t[i] > t[i - 1])) bad("t[" + std::to_string(i) + "] is not after t[" + std::to_string(i - 1) + "]");
+  }
+  check_track(own, "own", n);
+  std::set<std::uint32_t> ids;
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    const std::string name = "targets[" + std::to_string(k) + "] (id " + std::to_string(targets[k].id) + ")";
+    check_track(targets[k], name, n);
+    if (!ids.insert(targets[k].id).second) bad(name + ": duplicate target id");
+  }
+  for (std::size_t k = 0; k < plans.size(); ++k) {
+    const PlanRecord& p = plans[k];
+    const std::string name = "plans[" + std::to_string(k) + "] (plan_id " + std::to_string(p.plan_id) + ")";
+    if (!std::isfinite(p.t)) bad(name + ".t is not finite");
+    if (k > 0 && p.t < plans[k - 1].t) bad(name + ".t is before the previous plan's");
+    if (!(std::isfinite(p.planning_time) && p.planning_time >= 0.0)) bad(name + ".planning_time must be finite and >= 0");
+    if (p.status != PlanStatus::kNoPath && p.waypoints.empty()) bad(name + " has no waypoints");
+    for (std::size_t i = 0; i < p.waypoints.size(); ++i) {
+      const auto& w = p.waypoints[i];
+      if (!std::isfinite(w.x) || !std::isfinite(w.y) || std::isnan(w.t))
+        bad(name + ".waypoints[" + std::to_string(i) + "] is not finite");
+    }
+  }
+  for (std::size_t k = 0; k < guidance.size(); ++k)
+    if (!std::isfinite(guidance[k].t) || (k > 0 && guidance[k].t < guidance[k - 1].t))
+      bad("guidance[" + std::to_string(k) + "].t is not finite or out of order");
+  for (std::size_t k = 0; k < obstacles.polygons.size(); ++k) {
+    const auto& v = obstacles.polygons[k].vertices;
+    if (v.size() < 3) bad("obstacles.polygons[" + std::to_string(k) + "] has fewer than 3 vertices");
+    for (const auto& q : v)
+      if (!std::isfinite(q.x) || !std::isfinite(q.y)) bad("obstacles.polygons[" + std::to_string(k) + "] has a non-finite vertex");
+  }
+  for (std::size_t k = 0; k < obstacles.circles.size(); ++k) {
+    const auto& c = obstacles.circles[k];
+    if (!std::isfinite(c.centre.x) || !std::isfinite(c.centre.y) || !(std::isfinite(c.radius) && c.radius >= 0.0))
+      bad("obstacles.circles[" + std::to_string(k) + "] is not finite or has a negative radius");
+  }
+  if (!(std::isfinite(safety_distance) && safety_distance > 0.0)) bad("safety_distance must be finite and > 0");
+  if (!std::isfinite(goal.x) || !std::isfinite(goal.y)) bad("goal is not finite");
+  if (!(std::isfinite(goal.radius) && goal.radius > 0.0)) bad("goal.radius must be finite and > 0");
+}
+
+EvaluationParams EvaluationParams::scaled_to(double length, double reference_length) {
+  if (!(std::isfinite(length) && length > 0.0))
+    throw std::invalid_argument("EvaluationParams::scaled_to: length must be finite and > 0");
+  if (!(std::isfinite(reference_length) && reference_length > 0.0))
+    throw std::invalid_argument("EvaluationParams::scaled_to: reference_length must be finite and > 0");
+  EvaluationParams p;
+  const double s = length / reference_length;
+  p.reference_length = reference_length;
+  p.scale = s;
+  for (double* d : {&p.r_colregs_2_max, &p.r_colregs_3_max, &p.r_colregs_4_max, &p.r_pref, &p.r_min_cpa, &p.r_nm,
+                    &p.r_col_cpa})
+    *d *= s;
+  p.epsilon_d_course /= s;  // same speeds, s times the turning radius: s times slower turns
+  p.colreg = default_colreg(p.r_colregs_2_max, p.r_pref);
+  return p;
+}
+
+void EvaluationParams::validate() const {
+  auto pos_ = [](double v, const char* name) {
+    if (!(std::isfinite(v) && v > 0.0))
+      throw std::invalid_argument(std::string("EvaluationParams.") + name + " must be finite and > 0");
+  };
+  pos_(reference_length, "reference_length");
+  pos_(scale, "scale");
+  pos_(r_colregs_2_max, "r_colregs_2_max");
+  pos_(r_colregs_3_max, "r_colregs_3_max");
+  pos_(r_colregs_4_max, "r_colregs_4_max");
+  pos_(r_pref, "r_pref");
+  pos_(r_min_cpa, "r_min_cpa");
+  pos_(r_nm, "r_nm");
+  pos_(r_col_cpa, "r_col_cpa");
+  pos_(epsilon_d_course, "epsilon_d_course");
+  pos_(delta_course_md, "delta_course_md");
+  pos_(delta_speed_md, "delta_speed_md");
+  pos_(delta_course_app, "delta_course_app");
+  pos_(delta_speed_reduction_app, "delta_speed_reduction_app");
+  pos_(theta_sm_lim, "theta_sm_lim");
+  if (!(r_colregs_4_max <= r_colregs_3_max && r_colregs_3_max <= r_colregs_2_max))
+    throw std::invalid_argument("EvaluationParams: stage ranges must satisfy r_colregs_4_max <= r_colregs_3_max <= r_colregs_2_max");
+  colreg.validate();
+}
+
+void PassCriteria::validate() const {
+  if (!(std::isfinite(safety_tolerance) && safety_tolerance >= 0.0 && safety_tolerance < 1.0))
+    throw std::invalid_argument("PassCriteria.safety_tolerance must be in [0, 1)");
+  if (!(std::isfinite(max_safety_violation_s) && max_safety_violation_s >= 0.0))
+    throw std::invalid_argument("PassCriteria.max_safety_violation_s must be finite and >= 0");
+}
+
+// --- geometry API -----------------------------------------------------------------------------------
+
+double distance_to_polygon(const Point2& p, const Polygon& poly) {
+  if (poly.vertices.size() < 3) throw std::invalid_argument("distance_to_polygon: fewer than 3 vertices");
+  if (inside(p, poly)) return 0.0;
+  double best = kInf;
+  const auto& v = poly.vertices;
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) best = std::min(best, point_segment(p, v[j], v[i]));
+  return best;
+}
+
+double distance_to_obstacles(const Point2& p, const FixedObstacles& obs) {
+  return ObstacleIndex(obs).segment_distance(p, p);
+}
+
+double distance_to_path(const Point2& p, const std::vector<PlannedWaypoint>& wps) {
+  if (wps.empty()) throw std::invalid_argument("distance_to_path: no waypoints");
+  double best = dist(p, {wps[0].x, wps[0].y});
+  for (std::size_t i = 1; i < wps.size(); ++i)
+    best = std::min(best, point_segment(p, {wps[i - 1].x, wps[i - 1].y}, {wps[i].x, wps[i].y}));
+  return best;
+}
+
+std::vector<int> active_plan_index(const RunRecord& run) {
+  std::vector<int> idx(run.t.size(), -1);
+  int active = -1;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < run.t.size(); ++i) {
+    for (; k < run.plans.size() && run.plans[k].t <= run.t[i]; ++k)
+      if (run.plans[k].status != PlanStatus::kNoPath) active = static_cast<int>(k);
+    idx[i] = active;
+  }
+  return idx;
+}
+
+DistanceSeries distance_series(const RunRecord& run) {
+  const std::size_t n = run.t.size();
+  DistanceSeries d;
+  d.closest.assign(n, kInf);
+  d.target.resize(run.targets.size());
+  for (std::size_t k = 0; k < run.targets.size(); ++k) {
+    auto& v = d.target[k];
+    v.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      v[i] = dist(pos(run.own.states[i]), pos(run.targets[k].states[i]));
+      d.closest[i] = std::min(d.closest[i], v[i]);
+    }
+  }
+  if (!run.obstacles.empty()) {
+    const ObstacleIndex index(run.obstacles);
+    d.fixed.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 p = pos(run.own.states[i]);
+      d.fixed[i] = index.segment_distance(p, p);
+      d.closest[i] = std::min(d.closest[i], d.fixed[i]);
+    }
+  }
+  return d;
+}
+
+// --- COLREG -----------------------------------------------------------------------------------------
+
+namespace {
+
+EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const EvaluationParams& p) {
+  const auto& t = run.t;
+  const auto& own = run.own.states;
+  const auto& tg = tgt.states;
+  const std::size_t n = t.size();
+  EncounterResult e;
+  e.target_id = tgt.id;
+
+  std::vector<double> range(n);
+  for (std::size_t i = 0; i < n; ++i) range[i] = dist(pos(own[i]), pos(tg[i]));
+
+  // Closest approach over [a, b] (sample indices), refined between samples.
+  auto closest = [&](std::size_t a, std::size_t b) {
+    double best = range[a], tbest = t[a];
+    for (std::size_t i = a; i < b; ++i) {
+      const auto [d, u] = closest_on_interval(own[i], own[i + 1], tg[i], tg[i + 1]);
+      if (d < best) best = d, tbest = t[i] + u * (t[i + 1] - t[i]);
+    }
+    return std::pair<double, double>{best, tbest};
+  };
+
+  std::size_t start = n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (range[i] < p.r_colregs_2_max) {
+      start = i;
+      break;
+    }
+  if (start == n) {  // never close: no encounter; report the closest approach anyway
+    std::tie(e.cpa, e.t_cpa) = closest(0, n - 1);
+    return e;
+  }
+  e.encountered = true;
+  e.t_start = t[start];
+  e.range_start = range[start];
+  const colreg::Assessment a = colreg::assess(kin(own[start]), kin(tg[start]), p.colreg);
+  e.situation = a.type;
+  e.role = a.role;
+  e.beta_start = a.beta;
+  e.alpha_start = a.alpha;
+  e.dcpa_start = a.cpa.dcpa;
+
+  // The encounter lasts until the range opens beyond the start range again after the closest
+  // approach (or the run ends).
+  std::size_t end = n - 1, kmin = start;
+  for (std::size_t i = start; i < n; ++i) {
+    if (range[i] < range[kmin]) kmin = i;
+    if (i > kmin && range[i] >= p.r_colregs_2_max) {
+      end = i;
+      break;
+    }
+  }
+  std::tie(e.cpa, e.t_cpa) = closest(start, end);
+  std::size_t kcpa = kmin;  // sample nearest the refined CPA
+  for (std::size_t i = start; i <= end; ++i)
+    if (std::fabs(t[i] - e.t_cpa) < std::fabs(t[kcpa] - e.t_cpa)) kcpa = i;
+
+  // Passing side: where the target was, seen from the own bow, at the closest approach.
+  if (e.cpa > 1e-6) {
+    const ShipState& o = own[kcpa];
+    const double beta = geo::wrap_pi(geo::course_of(tg[kcpa].x - o.x, tg[kcpa].y - o.y) - o.heading);
+    e.passing_side = beta > 0.0 ? Side::kStarboard : (beta < 0.0 ? Side::kPort : Side::kNone);
+  }
+
+  // Bow-crossing distance: the own ship's along-track position in the target's frame at the first
+  // time it crosses the target's course line (lateral offset changes sign).
+  for (std::size_t i = start; i < end && std::isnan(e.bow_crossing); ++i) {
+    auto frame = [&](std::size_t j) {
+      const double dx = own[j].x - tg[j].x, dy = own[j].y - tg[j].y, h = tg[j].heading;
+      return std::pair<double, double>{std::cos(h) * dx + std::sin(h) * dy, -std::sin(h) * dx + std::cos(h) * dy};
+    };
+    const auto [al0, la0] = frame(i);
+    const auto [al1, la1] = frame(i + 1);
+    if (la0 != 0.0 && (la0 * la1 < 0.0 || la1 == 0.0)) {
+      const double f = la0 / (la0 - la1);
+      e.bow_crossing = al0 + f * (al1 - al0);
+    }
+  }
+
+  // Own manoeuvres in [start, kcpa]: course change from the course at the start, first change of
+  // at least delta_course_md within the detection window, and speed reduction.
+  const double chi0 = course(own[start]);
+  const double u0 = own[start].sog;
+  const double window = p.manoeuvre_window();
+  std::size_t back = start;
+  for (std::size_t i = start; i <= kcpa; ++i) {
+    const double dchi = geo::angle_diff(course(own[i]), chi0);
+    e.max_starboard_change = std::max(e.max_starboard_change, dchi);
+    e.max_port_change = std::max(e.max_port_change, -dchi);
+    if (u0 > 0.1) e.max_speed_reduction = std::max(e.max_speed_reduction, (u0 - own[i].sog) / u0);
+    while (t[i] - t[back] > window) ++back;
+    if (std::isnan(e.t_manoeuvre)) {
+      const double step = geo::angle_diff(course(own[i]), course(own[back]));
+      if (std::fabs(step) >= p.delta_course_md) {
+        e.t_manoeuvre = t[i];
+        e.manoeuvre_side = step > 0.0 ? Side::kStarboard : Side::kPort;
+      }
+    }
+  }
+
+  using colreg::EncounterType;
+  switch (e.situation) {
+    case EncounterType::kHeadOn:
+      // Rule 14: alter course to starboard so that each passes on the port side of the other.
+      e.turned_starboard = verdict(e.manoeuvre_side == Side::kStarboard && e.max_starboard_change >= p.theta_sm_lim);
+      e.passed_port_to_port = verdict(e.passing_side == Side::kPort);
+      break;
+    case EncounterType::kCrossingGiveWay:
+      // Rules 15/16: early substantial action, to starboard, and do not cross ahead.
+      e.turned_starboard = verdict(e.manoeuvre_side == Side::kStarboard && e.max_starboard_change >= p.theta_sm_lim);
+      e.not_crossed_ahead = verdict(!(e.bow_crossing > 0.0));
+      break;
+    case EncounterType::kOvertaking:
+      // Rule 13: keep out of the way of the overtaken ship.
+      e.kept_clear = verdict(e.cpa >= p.r_min_cpa);
+      break;
+    case EncounterType::kCrossingStandOn:
+    case EncounterType::kOvertaken: {
+      // Rule 17(a)(i): keep course and speed until the stand-on ship may act (stage 3).
+      if (e.range_start < p.r_colregs_3_max) break;  // may act from the start: nothing to hold
+      bool held = true;
+      for (std::size_t i = start; i <= end && range[i] >= p.r_colregs_3_max; ++i) {
+        if (std::fabs(geo::angle_diff(course(own[i]), chi0)) > p.delta_course_md) held = false;
+        if (u0 > 0.1 && std::fabs(own[i].sog - u0) / u0 > p.delta_speed_md) held = false;
+      }
+      e.held_course_and_speed = verdict(held);
+      break;
+    }
+    case EncounterType::kNone: break;
+  }
+  for (Verdict v : {e.turned_starboard, e.passed_port_to_port, e.not_crossed_ahead, e.kept_clear,
+                    e.held_course_and_speed})
+    if (v == Verdict::kFail) e.compliant = false;
+  return e;
+}
+
+std::string describe_failures(const EncounterResult& e) {
+  std::ostringstream s;
+  s << "target " << e.target_id << " (" << colreg::to_string(e.situation) << "):";
+  auto add = [&](const char* name, Verdict v) {
+    if (v == Verdict::kFail) s << " " << name;
+  };
+  add("did not turn to starboard;", e.turned_starboard);
+  add("did not pass port to port;", e.passed_port_to_port);
+  add("crossed ahead;", e.not_crossed_ahead);
+  add("did not keep clear;", e.kept_clear);
+  add("did not hold course and speed;", e.held_course_and_speed);
+  std::string r = s.str();
+  if (!r.empty() && r.back() == ';') r.pop_back();
+  return r;
+}
+
+}  // namespace
+
+std::vector<EncounterResult> evaluate_encounters(const RunRecord& run, const EvaluationParams& p) {
+  run.validate();
+  p.validate();
+  std::vector<EncounterResult> out;
+  out.reserve(run.targets.size());
+  for (const auto& tgt : run.targets) out.push_back(evaluate_one(run, tgt, p));
+  return out;
+}
+
+// --- everything ------------------------------------------------------------------------------------
+
+Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCriteria& criteria) {
+  criteria.validate();
+  Metrics m;
+  m.encounters = evaluate_encounters(run, p);  // validates run and p
+  m.scale = p.scale;
+  const auto& t = run.t;
+  const auto& own = run.own.states;
+  const std::size_t n = t.size();
+  m.sim_s = t.back() - t.front();
+  m.safety_distance = run.safety_distance;
+
+  // Goal: first entry into the arrival circle, on the segment between samples.
+  const Point2 g{run.goal.x, run.goal.y};
+  std::size_t last = n - 1;  // last sample that counts for path length and tracking
+  if (dist(pos(own[0]), g) <= run.goal.radius) {
+    m.goal_reached = true, m.t_goal = t[0], last = 0;
+  } else {
+    for (std::size_t i = 0; i + 1 < n && !m.goal_reached; ++i) {
+      const Point2 a = pos(own[i]), b = pos(own[i + 1]);
+      if (point_segment(g, a, b) > run.goal.radius) continue;
+      // Solve |a + u (b - a) - g| = r for the smaller root u in [0, 1].
+      const double dx = b.x - a.x, dy = b.y - a.y, fx = a.x - g.x, fy = a.y - g.y;
+      const double A = dx * dx + dy * dy, B = 2.0 * (fx * dx + fy * dy),
+                   C = fx * fx + fy * fy - run.goal.radius * run.goal.radius;
+      const double disc = std::max(0.0, B * B - 4.0 * A * C);
+      const double u = A > 0.0 ? std::clamp((-B - std::sqrt(disc)) / (2.0 * A), 0.0, 1.0) : 0.0;
+      m.goal_reached = true;
+      m.t_goal = t[i] + u * (t[i + 1] - t[i]);
+      last = i + 1;
+    }
+  }
+  m.straight_line = dist(pos(own[0]), g);
+  for (std::size_t i = 0; i < last; ++i) m.path_length += dist(pos(own[i]), pos(own[i + 1]));
+
+  // Distances: exact minimum between samples; violation time from the sampled closest distance.
+  m.min_distance = kInf;
+  for (std::size_t k = 0; k < run.targets.size(); ++k) {
+    const auto& tg = run.targets[k].states;
+    TargetDistance td{run.targets[k].id, dist(pos(own[0]), pos(tg[0])), t[0]};
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      const auto [d, u] = closest_on_interval(own[i], own[i + 1], tg[i], tg[i + 1]);
+      if (d < td.min_distance) td.min_distance = d, td.t_min = t[i] + u * (t[i + 1] - t[i]);
+    }
+    m.min_distance = std::min(m.min_distance, td.min_distance);
+    m.min_distance_targets.push_back(td);
+  }
+  if (!run.obstacles.empty()) {
+    const ObstacleIndex index(run.obstacles);
+    m.min_distance_fixed = index.segment_distance(pos(own[0]), pos(own[0]));
+    for (std::size_t i = 0; i + 1 < n; ++i)
+      m.min_distance_fixed = std::min(m.min_distance_fixed, index.segment_distance(pos(own[i]), pos(own[i + 1])));
+    m.min_distance = std::min(m.min_distance, m.min_distance_fixed);
+  }
+  if (!std::isfinite(m.min_distance)) m.min_distance = kNaN;  // nothing to be close to
+  const DistanceSeries ds = distance_series(run);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (std::isfinite(ds.closest[i]))
+      m.safety_violation_s += time_below(t[i], t[i + 1], ds.closest[i], ds.closest[i + 1], run.safety_distance);
+
+  // Planning statistics.
+  m.replans = static_cast<int>(run.plans.size());
+  std::vector<double> ms;
+  for (const auto& pl : run.plans) {
+    ms.push_back(pl.planning_time * 1e3);
+    if (pl.status == PlanStatus::kRelaxed) ++m.relaxed_plans;
+    if (pl.status == PlanStatus::kNoPath) ++m.no_path_plans;
+  }
+  if (!ms.empty()) {
+    std::sort(ms.begin(), ms.end());
+    m.planning = {percentile(ms, 0.5), percentile(ms, 0.95), ms.back()};
+  }
+
+  // Tracking: distance to the path active at each sample, up to the goal arrival.
+  const std::vector<int> active = active_plan_index(run);
+  double sum2 = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i <= last; ++i) {
+    if (active[i] < 0) continue;
+    const double d = distance_to_path(pos(own[i]), run.plans[static_cast<std::size_t>(active[i])].waypoints);
+    sum2 += d * d;
+    ++count;
+  }
+  if (count > 0) m.tracking_rmse = std::sqrt(sum2 / static_cast<double>(count));
+
+  // Pass criteria.
+  auto fmt = [](double v) {
+    std::ostringstream s;
+    s.precision(1);
+    s << std::fixed << v;
+    return s.str();
+  };
+  if (criteria.goal_required && !m.goal_reached) {
+    double closest = kInf;
+    for (const auto& s : own) closest = std::min(closest, dist(pos(s), g));
+    m.failures.push_back("goal not reached (closest " + fmt(closest) + " m, arrival radius " + fmt(run.goal.radius) + " m)");
+  }
+  const double limit = run.safety_distance * (1.0 - criteria.safety_tolerance);
+  if (std::isfinite(m.min_distance) && m.min_distance < limit)
+    m.failures.push_back("min distance " + fmt(m.min_distance) + " m < " + fmt(limit) + " m (d_safety " +
+                         fmt(run.safety_distance) + " m, tolerance " + fmt(100.0 * criteria.safety_tolerance) + " %)");
+  if (m.safety_violation_s > criteria.max_safety_violation_s)
+    m.failures.push_back("below d_safety for " + fmt(m.safety_violation_s) + " s (allowed " +
+                         fmt(criteria.max_safety_violation_s) + " s)");
+  if (criteria.all_encounters_compliant)
+    for (const auto& e : m.encounters)
+      if (!e.compliant) m.failures.push_back("COLREG: " + describe_failures(e));
+  for (const auto& req : criteria.required) {
+    const auto it = std::find_if(m.encounters.begin(), m.encounters.end(),
+                                 [&](const EncounterResult& e) { return e.target_id == req.target_id; });
+    if (it == m.encounters.end())
+      throw std::invalid_argument("PassCriteria.required: no target with id " + std::to_string(req.target_id));
+    if (req.check_situation && it->situation != req.situation)
+      m.failures.push_back("target " + std::to_string(req.target_id) + ": situation " +
+                           colreg::to_string(it->situation) + ", expected " + colreg::to_string(req.situation));
+    if (req.compliant && !it->compliant && !criteria.all_encounters_compliant)
+      m.failures.push_back("COLREG: " + describe_failures(*it));
+  }
+  m.passed = m.failures.empty();
+  return m;
+}
+
+}  // namespace mpgc::scenario_runner

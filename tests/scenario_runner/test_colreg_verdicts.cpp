@@ -1,0 +1,248 @@
+// COLREG verdicts from ground truth on synthetic two-ship encounters (NTNU scale, s = 1: stage
+// ranges 2500 / 1100 / 200 m, minimum CPA 100 m) and on the five NTNU canonical scenarios.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <string>
+
+#include "mpgc/testing.hpp"
+#include "synthetic.hpp"
+
+namespace sr = mpgc::scenario_runner;
+using mpgc::colreg::EncounterType;
+using mpgc::colreg::Role;
+using mpgc::geo::deg2rad;
+using mpgc::geo::kPi;
+using sr::Side;
+using sr::Verdict;
+using sr::synthetic::Order;
+using sr::synthetic::sail;
+
+namespace {
+
+sr::EncounterResult one(const sr::RunRecord& run, const sr::EvaluationParams& p = {}) {
+  const auto e = sr::evaluate_encounters(run, p);
+  EXPECT_EQ(e.size(), 1u);
+  return e.at(0);
+}
+
+// Head-on: own ship north from the origin, target south from 4 km ahead, both 7 m/s. The own
+// ship alters 35 deg at t = 120 s (range 2320 m, after the encounter started at 2500 m).
+sr::RunRecord head_on(double turn) {
+  const auto t = sr::synthetic::times(400, 1.0);
+  auto own = sail(0, 10, 0, 0, 0, 7, {{120, turn, 7}}, t);
+  auto tgt = sail(1, 10, 4000, 0, kPi, 7, {}, t);
+  return sr::synthetic::run_of(t, own, {tgt});
+}
+
+}  // namespace
+
+TEST(ColregVerdicts, HeadOnStarboardTurnIsCompliant) {
+  const auto e = one(head_on(deg2rad(35)));
+  EXPECT_TRUE(e.encountered);
+  EXPECT_EQ(e.situation, EncounterType::kHeadOn);
+  EXPECT_EQ(e.role, Role::kBothGiveWay);
+  EXPECT_NEAR(e.t_start, 108.0, 1.0);  // range 4000 - 14 t < 2500
+  EXPECT_EQ(e.manoeuvre_side, Side::kStarboard);
+  EXPECT_NEAR(e.max_starboard_change, deg2rad(35), 1e-9);
+  EXPECT_EQ(e.turned_starboard, Verdict::kPass);
+  EXPECT_EQ(e.passing_side, Side::kPort);
+  EXPECT_EQ(e.passed_port_to_port, Verdict::kPass);
+  EXPECT_GT(e.cpa, 100.0);
+  EXPECT_TRUE(e.compliant);
+}
+
+TEST(ColregVerdicts, HeadOnPortTurnIsNotCompliant) {
+  const auto e = one(head_on(deg2rad(-35)));
+  EXPECT_EQ(e.situation, EncounterType::kHeadOn);
+  EXPECT_EQ(e.manoeuvre_side, Side::kPort);
+  EXPECT_EQ(e.turned_starboard, Verdict::kFail);
+  EXPECT_EQ(e.passing_side, Side::kStarboard);
+  EXPECT_EQ(e.passed_port_to_port, Verdict::kFail);
+  EXPECT_FALSE(e.compliant);
+}
+
+TEST(ColregVerdicts, HeadOnWithoutManoeuvreIsNotCompliant) {
+  const auto t = sr::synthetic::times(400, 1.0);
+  // Offset 150 m to port of the target's line: passes safely but without turning.
+  auto own = sail(0, 10, 0, 0, 0, 7, {}, t);
+  auto tgt = sail(1, 10, 4000, -150, kPi, 7, {}, t);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kHeadOn);
+  EXPECT_EQ(e.manoeuvre_side, Side::kNone);
+  EXPECT_TRUE(std::isnan(e.t_manoeuvre));
+  EXPECT_EQ(e.turned_starboard, Verdict::kFail);
+  EXPECT_EQ(e.passed_port_to_port, Verdict::kPass);
+  EXPECT_NEAR(e.cpa, 150.0, 1e-6);
+  EXPECT_FALSE(e.compliant);
+}
+
+// Crossing: own ship north from the origin, target west from (2000, 2000): collision course at
+// 7 m/s each; the target is 45 deg on the own starboard bow, so the own ship gives way.
+TEST(ColregVerdicts, GiveWayCrossingPassingAsternIsCompliant) {
+  const auto t = sr::synthetic::times(700, 1.0);
+  auto own = sail(0, 10, 0, 0, 0, 7, {{40, deg2rad(60), 7}}, t);
+  auto tgt = sail(1, 10, 2000, 2000, -kPi / 2, 7, {}, t);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kCrossingGiveWay);
+  EXPECT_EQ(e.role, Role::kGiveWay);
+  EXPECT_NEAR(e.dcpa_start, 0.0, 1e-6);
+  EXPECT_EQ(e.turned_starboard, Verdict::kPass);
+  EXPECT_FALSE(e.bow_crossing > 0.0);
+  EXPECT_EQ(e.not_crossed_ahead, Verdict::kPass);
+  EXPECT_TRUE(e.compliant);
+}
+
+TEST(ColregVerdicts, GiveWayCrossingAheadIsNotCompliant) {
+  const auto t = sr::synthetic::times(700, 1.0);
+  // Speeds up to 14 m/s at t = 40 s and crosses the target's line 2000 - 7 * 162.9 = 860 m ahead.
+  auto own = sail(0, 10, 0, 0, 0, 7, {{40, 0, 14}}, t);
+  auto tgt = sail(1, 10, 2000, 2000, -kPi / 2, 7, {}, t);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kCrossingGiveWay);
+  EXPECT_NEAR(e.bow_crossing, 2000.0 - 7.0 * (40.0 + (2000.0 - 280.0) / 14.0), 1.0);
+  EXPECT_EQ(e.not_crossed_ahead, Verdict::kFail);
+  EXPECT_EQ(e.turned_starboard, Verdict::kFail);
+  EXPECT_FALSE(e.compliant);
+}
+
+// Crossing stand-on: target from (2000, -2000) heading east, on the own port bow.
+sr::EncounterResult stand_on(const std::vector<Order>& orders) {
+  const auto t = sr::synthetic::times(500, 1.0);
+  auto own = sail(0, 10, 0, 0, 0, 7, orders, t);
+  auto tgt = sail(1, 10, 2000, -2000, kPi / 2, 7, {}, t);
+  return one(sr::synthetic::run_of(t, own, {tgt}));
+}
+
+TEST(ColregVerdicts, StandOnHoldingCourseUntilStage3IsCompliant) {
+  // Range falls below 1100 m at t = (2828 - 1100) / 9.9 = 175 s; the own ship turns at 190 s.
+  const auto e = stand_on({{190, deg2rad(40), 7}});
+  EXPECT_EQ(e.situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(e.role, Role::kStandOn);
+  EXPECT_EQ(e.held_course_and_speed, Verdict::kPass);
+  EXPECT_EQ(e.turned_starboard, Verdict::kNotApplicable);
+  EXPECT_TRUE(e.compliant);
+}
+
+TEST(ColregVerdicts, StandOnChangingCourseEarlyIsFlagged) {
+  const auto e = stand_on({{60, deg2rad(20), 7}});  // range 2240 m: still stage 2
+  EXPECT_EQ(e.situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(e.held_course_and_speed, Verdict::kFail);
+  EXPECT_FALSE(e.compliant);
+}
+
+TEST(ColregVerdicts, StandOnChangingSpeedEarlyIsFlagged) {
+  const auto e = stand_on({{60, 0, 4}});
+  EXPECT_EQ(e.held_course_and_speed, Verdict::kFail);
+  EXPECT_FALSE(e.compliant);
+  // A small speed change (10 % < delta_speed_md = 20 %) is not a manoeuvre.
+  EXPECT_EQ(stand_on({{60, 0, 6.3}}).held_course_and_speed, Verdict::kPass);
+}
+
+TEST(ColregVerdicts, OvertakingKeepsClearOnlyWithEnoughCpa) {
+  const auto t = sr::synthetic::times(600, 1.0);
+  auto tgt = sail(1, 10, 1000, 0, 0, 3, {}, t);
+  // Straight behind: collision course; then a 20 deg alteration at 30 s gives a wide pass.
+  auto straight = sail(0, 10, 0, 0, 0, 8, {}, t);
+  auto e = one(sr::synthetic::run_of(t, straight, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kOvertaking);
+  EXPECT_EQ(e.role, Role::kGiveWay);
+  EXPECT_LT(e.cpa, 1.0);
+  EXPECT_EQ(e.kept_clear, Verdict::kFail);
+  auto wide = sail(0, 10, 0, 0, 0, 8, {{30, deg2rad(20), 8}, {120, 0, 8}}, t);
+  e = one(sr::synthetic::run_of(t, wide, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kOvertaking);
+  EXPECT_GT(e.cpa, 100.0);
+  EXPECT_EQ(e.kept_clear, Verdict::kPass);
+  EXPECT_EQ(e.passing_side, Side::kPort);
+  EXPECT_TRUE(e.compliant);
+}
+
+TEST(ColregVerdicts, FarOrOpeningTargetsAreNoEncounter) {
+  const auto t = sr::synthetic::times(100, 1.0);
+  auto own = sail(0, 10, 0, 0, 0, 7, {}, t);
+  auto far = sail(1, 10, 10000, 0, kPi, 7, {}, t);       // never inside 2500 m
+  auto opening = sail(2, 10, -500, 0, kPi, 7, {}, t);    // astern, going away
+  const auto e = sr::evaluate_encounters(sr::synthetic::run_of(t, own, {far, opening}), {});
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_FALSE(e[0].encountered);
+  EXPECT_NEAR(e[0].cpa, 10000.0 - 1400.0, 1e-6);
+  EXPECT_TRUE(e[1].encountered);
+  EXPECT_EQ(e[1].situation, EncounterType::kNone);
+  EXPECT_TRUE(e[1].compliant);
+  EXPECT_EQ(e[1].turned_starboard, Verdict::kNotApplicable);
+}
+
+TEST(ColregVerdicts, ScaledToKvlcc2) {
+  const auto p = sr::EvaluationParams::scaled_to(320.0);
+  EXPECT_DOUBLE_EQ(p.scale, 32.0);
+  EXPECT_DOUBLE_EQ(p.r_min_cpa, 3200.0);  // = d_safety = 10 Lpp of seed 000
+  EXPECT_DOUBLE_EQ(p.r_colregs_2_max, 80000.0);
+  EXPECT_DOUBLE_EQ(p.r_colregs_3_max, 35200.0);
+  EXPECT_NEAR(p.manoeuvre_window(), 2.0 / 0.3 * 32.0, 1e-9);
+  EXPECT_DOUBLE_EQ(p.colreg.d_colreg, 80000.0);
+  EXPECT_DOUBLE_EQ(p.delta_course_md, deg2rad(2.0));  // angles do not scale
+  EXPECT_THROW(sr::EvaluationParams::scaled_to(0.0), std::invalid_argument);
+  EXPECT_THROW(sr::EvaluationParams::scaled_to(std::nan("")), std::invalid_argument);
+
+  // The head-on case at 32 x the size and the same speeds: same verdicts.
+  const double s = 32.0;
+  const auto t = sr::synthetic::times(400 * s, 10.0);
+  auto own = sail(0, 320, 0, 0, 0, 7, {{120 * s, deg2rad(35), 7}}, t, deg2rad(3.0) / s);
+  auto tgt = sail(1, 320, 4000 * s, 0, kPi, 7, {}, t, deg2rad(3.0) / s);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}, 3200.0), p);
+  EXPECT_EQ(e.situation, EncounterType::kHeadOn);
+  EXPECT_EQ(e.turned_starboard, Verdict::kPass);
+  EXPECT_EQ(e.passed_port_to_port, Verdict::kPass);
+}
+
+TEST(ColregVerdicts, DefaultsAreTheNtnuEvaluatorThresholds) {
+  const YAML::Node y = YAML::LoadFile(mpgc::testing::shared_data("encounters/ntnu_canonical/evaluator.yaml"))["evaluator"];
+  const sr::EvaluationParams p;
+  EXPECT_DOUBLE_EQ(p.r_colregs_2_max, y["r_colregs_2_max"].as<double>());
+  EXPECT_DOUBLE_EQ(p.r_colregs_3_max, y["r_colregs_3_max"].as<double>());
+  EXPECT_DOUBLE_EQ(p.r_colregs_4_max, y["r_colregs_4_max"].as<double>());
+  EXPECT_DOUBLE_EQ(p.r_pref, y["r_pref"].as<double>());
+  EXPECT_DOUBLE_EQ(p.r_min_cpa, y["r_min_cpa"].as<double>());
+  EXPECT_DOUBLE_EQ(p.r_nm, y["r_nm"].as<double>());
+  EXPECT_DOUBLE_EQ(p.r_col_cpa, y["r_col_cpa"].as<double>());
+  EXPECT_DOUBLE_EQ(p.epsilon_d_course, deg2rad(y["epsilon_d_course"].as<double>()));
+  EXPECT_DOUBLE_EQ(p.delta_course_md, deg2rad(y["delta_course_md"].as<double>()));
+  EXPECT_DOUBLE_EQ(p.delta_speed_md, y["delta_speed_md"].as<double>());
+  EXPECT_DOUBLE_EQ(p.delta_course_app, deg2rad(y["delta_course_app"].as<double>()));
+  EXPECT_DOUBLE_EQ(p.delta_speed_reduction_app, y["delta_speed_reduction_app"].as<double>());
+  EXPECT_DOUBLE_EQ(p.theta_sm_lim, deg2rad(y["theta_sm_lim"].as<double>()));
+}
+
+// The five NTNU canonical scenarios hold initial states only (csog_state = [north, east, speed,
+// course deg], UTM metres): sail them on straight lines for t_end and check the classification
+// at the start of the encounter against the file's type.
+TEST(ColregVerdicts, NtnuCanonicalScenariosClassifiedAtStart) {
+  const std::map<std::string, EncounterType> expected = {
+      {"HO", EncounterType::kHeadOn},          {"CR_GW", EncounterType::kCrossingGiveWay},
+      {"CR_SO", EncounterType::kCrossingStandOn}, {"OT_ing", EncounterType::kOvertaking},
+      {"OT_en", EncounterType::kOvertaken}};
+  for (const char* file : {"head_on", "crossing_give_way", "crossing_stand_on", "overtaking", "overtaken"}) {
+    SCOPED_TRACE(file);
+    const YAML::Node y =
+        YAML::LoadFile(mpgc::testing::shared_data(std::string("encounters/ntnu_canonical/") + file + ".yaml"));
+    const auto t = sr::synthetic::times(y["t_end"].as<double>(), y["dt_sim"].as<double>());
+    std::vector<sr::ShipTrack> ships;
+    for (const auto& s : y["ship_list"]) {
+      const auto c = s["csog_state"].as<std::vector<double>>();
+      ASSERT_EQ(c.size(), 4u);
+      ships.push_back(sail(s["id"].as<std::uint32_t>(), 10, c[0], c[1], deg2rad(c[3]), c[2], {}, t));
+    }
+    ASSERT_EQ(ships.size(), 2u);
+    ships[1].id = 1;
+    const auto e = one(sr::synthetic::run_of(t, ships[0], {ships[1]}));
+    EXPECT_TRUE(e.encountered);
+    EXPECT_EQ(e.situation, expected.at(y["type"].as<std::string>()))
+        << "classified " << mpgc::colreg::to_string(e.situation);
+    EXPECT_LT(e.dcpa_start, 1.0);  // all five are set on collision courses
+    // Straight lines: no manoeuvre, so every give-way situation is non-compliant and every
+    // stand-on one compliant.
+    EXPECT_EQ(e.compliant, e.role == Role::kStandOn || e.role == Role::kNone);
+  }
+}
