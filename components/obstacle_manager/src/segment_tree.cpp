@@ -186,24 +186,52 @@ bool SegmentTree::any_within(PointNE q0, PointNE q1, double d) const {
 
 bool SegmentTree::odd_crossings(PointNE p) const {
   if (nodes_.empty()) return false;
+  // Cast the ray towards the nearest side of the root box: fewer nodes to visit. Parity is the
+  // same for every direction (points exactly on a boundary aside). In (u, v) the ray is +v.
+  const BoxNE& root = nodes_[0].box;
+  const double reach[4] = {root.max_y - p.y, p.y - root.min_y, root.max_x - p.x, p.x - root.min_x};
+  int dir = 0;
+  for (int k = 1; k < 4; ++k)
+    if (reach[k] < reach[dir]) dir = k;
+  if (reach[dir] < 0.0) return false;  // outside the box of every edge
+  auto uv = [dir](PointNE q) -> std::pair<double, double> {
+    switch (dir) {
+      case 0: return {q.x, q.y};    // east
+      case 1: return {q.x, -q.y};   // west
+      case 2: return {q.y, q.x};    // north
+      default: return {q.y, -q.x};  // south
+    }
+  };
+  auto box_uv = [dir](const BoxNE& b, double& umin, double& umax, double& vmax) {
+    switch (dir) {
+      case 0: umin = b.min_x; umax = b.max_x; vmax = b.max_y; break;
+      case 1: umin = b.min_x; umax = b.max_x; vmax = -b.min_y; break;
+      case 2: umin = b.min_y; umax = b.max_y; vmax = b.max_x; break;
+      default: umin = b.min_y; umax = b.max_y; vmax = -b.min_x; break;
+    }
+  };
+  const auto [pu, pv] = uv(p);
   std::vector<uint32_t> groups;
   uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (p.x < n.box.min_x || p.x > n.box.max_x || p.y > n.box.max_y) continue;
+    double umin, umax, vmax;
+    box_uv(n.box, umin, umax, vmax);
+    if (pu < umin || pu > umax || pv > vmax) continue;
     if (n.count == 0) {
       stack[top++] = n.first;
       stack[top++] = n.first + 1;
       continue;
     }
     for (uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const Segment& s = segs_[i];
-      // Half-open rule on x so a ray through a vertex counts exactly one of its two edges.
-      if ((s.a.x > p.x) == (s.b.x > p.x)) continue;
-      const double y = s.a.y + (p.x - s.a.x) * (s.b.y - s.a.y) / (s.b.x - s.a.x);
-      if (y > p.y) groups.push_back(s.group);
+      const auto [au, av] = uv(segs_[i].a);
+      const auto [bu, bv] = uv(segs_[i].b);
+      // Half-open rule on u so a ray through a vertex counts exactly one of its two edges.
+      if ((au > pu) == (bu > pu)) continue;
+      const double v = av + (pu - au) * (bv - av) / (bu - au);
+      if (v > pv) groups.push_back(segs_[i].group);
     }
   }
   std::sort(groups.begin(), groups.end());
