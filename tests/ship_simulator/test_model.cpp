@@ -203,3 +203,18 @@ TEST(NomotoModel, SteadyYawRateIsKDelta) {
   EXPECT_NEAR(m->state().r, K * geo::deg2rad(5.0), 1e-6);
   EXPECT_THROW(sim::load_nomoto_csv(data_dir() + "/nomoto_kt.csv", "Submarine", 7.0), std::runtime_error);
 }
+
+TEST(ShipModel, StartsFromRestAndStops) {
+  for (const char* kind : {"mmg", "nomoto"}) {
+    auto m = model(kind);
+    m->set_state(sim::ShipState{});  // at rest, engine stopped
+    for (int i = 0; i < 100; ++i) m->step(0.1, {geo::deg2rad(35.0), 0.0});
+    EXPECT_TRUE(m->state().finite()) << kind;
+    EXPECT_NEAR(m->state().u, 0.0, 1e-9) << kind;
+    for (int i = 0; i < 9000; ++i) m->step(0.1, {0.0, 100.0});  // 15 min ahead
+    EXPECT_GT(m->state().u, 5.0) << kind;
+    for (int i = 0; i < 9000; ++i) m->step(0.1, {0.0, 0.0});  // engine stopped: coasts down
+    EXPECT_LT(m->state().u, 5.0) << kind;
+    EXPECT_GE(m->state().u, 0.0) << kind;
+  }
+}
