@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
       sim::ShipCommand cmd;
       uint32_t seq = 0;
       bool started = false;
+      bool stopped = false;
       int64_t last_progress_wall = 0;
       int64_t start_wall = 0;
       int64_t next_truth_ns = 0;
@@ -143,6 +144,7 @@ int main(int argc, char** argv) {
         const double wall = (c.now_ns() - st->start_wall) * 1e-9, simt = world->time_ns() * 1e-9;
         c.log().info("done: {} steps, {:.1f} s simulated in {:.2f} s wall, real-time factor {:.1f}",
                      world->step_index(), simt, wall, wall > 0 ? simt / wall : 0.0);
+        st->stopped = true;
         c.stop(0);
         return;
       }
@@ -159,7 +161,13 @@ int main(int argc, char** argv) {
     if (!lockstep) {
       c.every(p.step * wall_per_sim, advance);
     } else if (barrier->empty()) {
-      c.every(1e-9, advance);  // no participants: as fast as the model goes
+      // No participants: as fast as the model goes, in bursts of 5 ms wall so the executor
+      // still serves actuator commands (and a tiny timer period would make its catch-up loop spin).
+      c.every(1e-3, [&, st, advance] {
+        const int64_t until = c.now_ns() + 5'000'000;
+        do advance();
+        while (!st->stopped && c.now_ns() < until);
+      });
     } else {
       c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
         const auto r = barrier->ack(a.component, a.step);
