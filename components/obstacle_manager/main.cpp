@@ -248,11 +248,13 @@ int main(int argc, char** argv) {
         try {
           set_chart(load_chart(p, frame, files));
           c->count("chart_reloaded");
+          c->set_health(msg::HealthState::HEALTH_OK, "");
           c->log().info("chart changed on disk: reloaded, {} points", st->chart.points.size());
           if (st->own) publish_fixed(*st->own);
           else if (st->region.whole_chart()) publish_fixed({0, 0});
         } catch (const std::exception& e) {
           c->reject("chart", std::string("reload failed, keeping the previous chart: ") + e.what());
+          c->set_health(msg::HealthState::HEALTH_DEGRADED, std::string("chart reload failed: ") + e.what());
         }
       });
   });
