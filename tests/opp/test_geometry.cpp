@@ -62,6 +62,32 @@ TEST(PointObstacles, SegmentClearMatchesBruteForce) {
   }
 }
 
+TEST(PointObstacles, SegmentClearExactNearDenseClustersAndLargeMargins) {
+  // Dense islands and a safety distance comparable to the legs: the bisection must stay exact,
+  // including for clearances just above and just below d.
+  std::mt19937_64 g(8);
+  std::vector<opp::Vec2> pts;
+  for (int c = 0; c < 5; ++c) {
+    const opp::Vec2 ctr{u(g) * 5000, u(g) * 5000};
+    for (int i = 0; i < 2000; ++i) pts.push_back(ctr + opp::Vec2{(u(g) - 0.5) * 200, (u(g) - 0.5) * 200});
+  }
+  opp::PointObstacles obs(pts);
+  int clear = 0, blocked = 0;
+  for (int q = 0; q < 1500; ++q) {
+    const opp::Vec2 a{u(g) * 5000, u(g) * 5000};
+    const opp::Vec2 b = a + opp::Vec2{(u(g) - 0.5) * 3000, (u(g) - 0.5) * 3000};
+    double best = 1e300;
+    for (const auto& p : pts) best = std::min(best, opp::point_segment_dist2(p, a, b));
+    // Half the queries put d within 0.1 % of the true clearance, on either side.
+    const double d = q % 2 ? u(g) * 1000 : std::sqrt(best) * (q % 4 == 0 ? 0.999 : 1.001);
+    const bool expect = best >= d * d;
+    ASSERT_EQ(obs.segment_clear(a, b, d), expect) << q;
+    (expect ? clear : blocked)++;
+  }
+  EXPECT_GT(clear, 300);
+  EXPECT_GT(blocked, 300);
+}
+
 TEST(Obstacles, RejectNonFiniteInput) {
   EXPECT_THROW(opp::PointObstacles({{0, 0}, {std::nan(""), 1}}), std::invalid_argument);
   EXPECT_THROW(opp::DiscObstacles({{{0, 0}, -1}}), std::invalid_argument);

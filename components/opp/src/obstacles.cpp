@@ -97,12 +97,22 @@ struct SegmentHit {
 
 bool PointObstacles::segment_clear(Vec2 a, Vec2 b, double d) const {
   if (!index_) return true;
+  return clear_piece(a, b, d, 0);
+}
+
+// Exact, by bisection on nearest-point queries: every point within d of [a, b] lies within
+// half + d of its midpoint m, so nearest(m) >= half + d proves the piece clear and nearest(m) < d
+// proves it blocked. Otherwise the two halves are tried; a small piece (or a deep one) ends with a
+// radius search, which then only visits the thin annulus nearest(m) <= r < half + d. Much cheaper
+// than one radius search around a long leg passing a densely sampled shore.
+bool PointObstacles::clear_piece(Vec2 a, Vec2 b, double d, int depth) const {
   const Vec2 m = 0.5 * (a + b);
   const double half = 0.5 * norm(b - a);
-  // Every point within d of the segment lies within half + d of its midpoint.
   const double nm = nearest(m);
   if (nm >= half + d) return true;
   if (nm < d) return false;
+  if (depth < 24 && half > std::max(0.5, 0.02 * d))
+    return clear_piece(a, m, d, depth + 1) && clear_piece(m, b, d, depth + 1);
   SegmentHit rs{&points_, a, b, (half + d) * (half + d), d * d};
   const double q[2] = {m.x, m.y};
   index_->tree.findNeighbors(rs, q, nanoflann::SearchParams(0));

@@ -58,6 +58,7 @@ class PointObstacles final : public FixedObstacles {
 
  private:
   struct Index;
+  bool clear_piece(Vec2 a, Vec2 b, double d, int depth) const;
   std::vector<Vec2> points_;
   std::unique_ptr<Index> index_;
 };
