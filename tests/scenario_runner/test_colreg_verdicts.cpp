@@ -246,3 +246,26 @@ TEST(ColregVerdicts, NtnuCanonicalScenariosClassifiedAtStart) {
     EXPECT_EQ(e.compliant, e.role == Role::kStandOn || e.role == Role::kNone);
   }
 }
+
+TEST(ColregVerdicts, StandOnIsExcusedWhileGivingWayToAnother) {
+  // Target 1 crosses from starboard (own ship gives way), target 2 from port (own ship stands
+  // on). Turning to starboard early for target 1 is what the rules ask; it cannot also hold
+  // course for target 2, so that verdict is not applicable rather than failed.
+  const auto t = sr::synthetic::times(700, 1.0);
+  auto own = sail(0, 10, 0, 0, 0, 7, {{40, deg2rad(60), 7}}, t);
+  auto gw = sail(1, 10, 2000, 2000, -kPi / 2, 7, {}, t);
+  auto so = sail(2, 10, 2000, -2000, kPi / 2, 7, {}, t);
+  const auto e = sr::evaluate_encounters(sr::synthetic::run_of(t, own, {gw, so}), {});
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_EQ(e[0].situation, EncounterType::kCrossingGiveWay);
+  EXPECT_EQ(e[0].turned_starboard, Verdict::kPass);
+  EXPECT_TRUE(e[0].compliant);
+  EXPECT_EQ(e[1].situation, EncounterType::kCrossingStandOn);
+  EXPECT_TRUE(e[1].conflicting_obligation);
+  EXPECT_EQ(e[1].held_course_and_speed, Verdict::kNotApplicable);
+  EXPECT_TRUE(e[1].compliant);
+  // Alone, the same early turn fails the stand-on verdict.
+  const auto alone = one(sr::synthetic::run_of(t, own, {so}));
+  EXPECT_FALSE(alone.conflicting_obligation);
+  EXPECT_EQ(alone.held_course_and_speed, Verdict::kFail);
+}

@@ -467,19 +467,25 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const E
       // Rule 17(a)(i): keep course and speed until the stand-on ship may act (stage 3).
       if (e.range_start < p.r_colregs_3_max) break;  // may act from the start: nothing to hold
       bool held = true;
-      for (std::size_t i = start; i <= end && range[i] >= p.r_colregs_3_max; ++i) {
+      std::size_t i = start;
+      for (; i <= end && range[i] >= p.r_colregs_3_max; ++i) {
         if (std::fabs(geo::angle_diff(course(own[i]), chi0)) > p.delta_course_md) held = false;
         if (u0 > 0.1 && std::fabs(own[i].sog - u0) / u0 > p.delta_speed_md) held = false;
       }
+      e.t_hold_end = t[std::min(i, end)];
       e.held_course_and_speed = verdict(held);
       break;
     }
     case EncounterType::kNone: break;
   }
+  return e;
+}
+
+void set_compliance(EncounterResult& e) {
+  e.compliant = true;
   for (Verdict v : {e.turned_starboard, e.passed_port_to_port, e.not_crossed_ahead, e.kept_clear,
                     e.held_course_and_speed})
     if (v == Verdict::kFail) e.compliant = false;
-  return e;
 }
 
 std::string describe_failures(const EncounterResult& e) {
@@ -506,6 +512,18 @@ std::vector<EncounterResult> evaluate_encounters(const RunRecord& run, const Eva
   std::vector<EncounterResult> out;
   out.reserve(run.targets.size());
   for (const auto& tgt : run.targets) out.push_back(evaluate_one(run, tgt, p));
+  // A ship that must give way to one target cannot stand on for another at the same time.
+  for (auto& so : out) {
+    if (so.held_course_and_speed == Verdict::kNotApplicable) continue;
+    for (const auto& gw : out) {
+      const bool gives_way = gw.role == colreg::Role::kGiveWay || gw.role == colreg::Role::kBothGiveWay;
+      if (&gw != &so && gives_way && gw.t_start <= so.t_hold_end && gw.t_cpa >= so.t_start) {
+        so.conflicting_obligation = true;
+        so.held_course_and_speed = Verdict::kNotApplicable;
+      }
+    }
+  }
+  for (auto& e : out) set_compliance(e);
   return out;
 }
 

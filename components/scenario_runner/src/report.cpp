@@ -108,7 +108,9 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
       << ", \"not_crossed_ahead\": " << quote(to_string(e.not_crossed_ahead))
       << ", \"kept_clear\": " << quote(to_string(e.kept_clear))
       << ", \"held_course_and_speed\": " << quote(to_string(e.held_course_and_speed))
-      << "},\n     \"compliant\": " << boolean(e.compliant) << "}";
+      << "},\n     \"t_hold_end_s\": " << num(e.t_hold_end)
+      << ", \"conflicting_obligation\": " << boolean(e.conflicting_obligation)
+      << ", \"compliant\": " << boolean(e.compliant) << "}";
   }
   o << (m.encounters.empty() ? "]\n" : "\n  ]\n");
   o << "}\n";

@@ -229,6 +229,12 @@ struct EncounterResult {
   Verdict not_crossed_ahead = Verdict::kNotApplicable;    // crossing give-way (rule 15)
   Verdict kept_clear = Verdict::kNotApplicable;           // overtaking: cpa >= r_min_cpa (rule 13)
   Verdict held_course_and_speed = Verdict::kNotApplicable;  // stand-on until r_colregs_3_max (17)
+  // Stand-on only: end of the hold window (range below r_colregs_3_max, or the encounter's end).
+  double t_hold_end = kNaN;  // [s]
+  // Stand-on only: during the hold window the own ship had to give way to another target (its
+  // give-way or head-on encounter overlapped), so it could not stand on; held_course_and_speed is
+  // then kNotApplicable (multi-ship conflict; the give-way encounter is judged instead).
+  bool conflicting_obligation = false;
   bool compliant = true;  // every applicable verdict passed
 };
 

@@ -39,7 +39,7 @@ struct ReportOptions {
 // dcpa_start_m, cpa_m, t_cpa_s, passing_side, bow_crossing_m, t_manoeuvre_s, manoeuvre_side,
 // max_starboard_change_deg, max_port_change_deg, max_speed_reduction, verdicts {turned_starboard,
 // passed_port_to_port, not_crossed_ahead, kept_clear, held_course_and_speed: "pass"|"fail"|"n/a"},
-// compliant}.
+// t_hold_end_s, conflicting_obligation, compliant}.
 void write_metrics_json(std::ostream& out, const Metrics& m, const ReportOptions& opt);
 
 // One row per truth sample: t_s; own_x_m, own_y_m, own_heading_rad, own_cog_rad, own_sog_mps; per
