@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "synthetic.hpp"
 
@@ -239,4 +240,48 @@ TEST(Evaluation, BadInputIsRejectedWithTheFieldNamed) {
   sr::PassCriteria c;
   c.safety_tolerance = 1.5;
   EXPECT_THROW(sr::evaluate(good, {}, c), std::invalid_argument);
+}
+
+TEST(Evaluation, GridIndexAgreesWithBruteForceOnManyPolygons) {
+  // 40 random star-shaped polygons of 30 vertices and a random walk that crosses some of them.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  sr::FixedObstacles obs;
+  for (int k = 0; k < 40; ++k) {
+    const double cx = 20000 * U(rng), cy = 20000 * U(rng);
+    sr::Polygon p;
+    for (int i = 0; i < 30; ++i) {
+      const double a = 2 * kPi * i / 30, r = 300 + 900 * U(rng);
+      p.vertices.push_back({cx + r * std::cos(a), cy + r * std::sin(a)});
+    }
+    obs.polygons.push_back(p);
+  }
+  obs.circles.push_back({{10000, 10000}, 250});
+  const auto t = sr::synthetic::times(3000, 2.0);
+  sr::ShipTrack own;
+  own.length = 100;
+  double x = 10000, y = 10000, h = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    h += 0.2 * (U(rng) - 0.5);
+    x += 16 * std::cos(h), y += 16 * std::sin(h);
+    own.states.push_back({x, y, h, h, 8});
+  }
+  auto r = sr::synthetic::run_of(t, own, {});
+  r.obstacles = obs;
+  const auto ds = sr::distance_series(r);
+  double brute_min = 1e300;
+  int inside = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const sr::Point2 p{own.states[i].x, own.states[i].y};
+    double d = std::max(0.0, std::hypot(p.x - 10000, p.y - 10000) - 250);
+    for (const auto& poly : obs.polygons) d = std::min(d, sr::distance_to_polygon(p, poly));
+    ASSERT_NEAR(ds.fixed[i], d, 1e-9) << "sample " << i;
+    EXPECT_NEAR(sr::distance_to_obstacles(p, obs), d, 1e-9);
+    brute_min = std::min(brute_min, d);
+    inside += d == 0.0;
+  }
+  const auto m = sr::evaluate(r, {}, {});
+  EXPECT_LE(m.min_distance_fixed, brute_min);
+  EXPECT_GE(m.min_distance_fixed, brute_min - 16.0);  // within one step of the sampled minimum
+  RecordProperty("samples_inside", inside);
 }

@@ -89,30 +89,122 @@ Box box_of(const Polygon& poly) {
   return b;
 }
 
-// Obstacles with their boxes, so that a query skips far polygons (charts have many).
-struct ObstacleIndex {
-  const FixedObstacles* obs;
-  std::vector<Box> boxes;
-  explicit ObstacleIndex(const FixedObstacles& o) : obs(&o) {
-    boxes.reserve(o.polygons.size());
-    for (const auto& p : o.polygons) boxes.push_back(box_of(p));
+// Fixed obstacles behind a uniform grid of polygon edges, so that a query near a chart with
+// thousands of vertices looks at the few edges around the ship only.
+class ObstacleIndex {
+ public:
+  explicit ObstacleIndex(const FixedObstacles& o) : obs_(&o) {
+    for (std::size_t k = 0; k < o.polygons.size(); ++k) {
+      const auto& v = o.polygons[k].vertices;
+      boxes_.push_back(box_of(o.polygons[k]));
+      for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
+        edges_.push_back({v[j], v[i]});
+        all_.add(v[i]);
+      }
+    }
+    if (edges_.empty()) return;
+    // About two edges per cell on average, at most 512 x 512 cells.
+    const double w = std::max(all_.x1 - all_.x0, 1e-6), h = std::max(all_.y1 - all_.y0, 1e-6);
+    const double cells = std::clamp(static_cast<double>(edges_.size()) / 2.0, 1.0, 512.0 * 512.0);
+    cell_ = std::max(std::sqrt(w * h / cells), 1e-6);
+    nx_ = std::min<long>(512, static_cast<long>(w / cell_) + 1);
+    ny_ = std::min<long>(512, static_cast<long>(h / cell_) + 1);
+    cell_ = std::max(w / static_cast<double>(nx_), h / static_cast<double>(ny_)) * (1.0 + 1e-9);
+    grid_.resize(static_cast<std::size_t>(nx_ * ny_));
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      Box b;
+      b.add(edges_[e].first), b.add(edges_[e].second);
+      for (long cx = cx_of(b.x0); cx <= cx_of(b.x1); ++cx)
+        for (long cy = cy_of(b.y0); cy <= cy_of(b.y1); ++cy) grid_[idx(cx, cy)].push_back(e);
+    }
+    stamp_.assign(edges_.size(), 0);
   }
-  // Distance from segment ab (a point when a == b) to the nearest obstacle.
-  double segment_distance(const Point2& a, const Point2& b) const {
-    double best = kInf;
-    for (const auto& c : obs->circles) best = std::min(best, std::max(0.0, point_segment(c.centre, a, b) - c.radius));
+
+  bool inside_any(const Point2& p) const {
+    for (std::size_t k = 0; k < boxes_.size(); ++k)
+      if (p.x >= boxes_[k].x0 && p.x <= boxes_[k].x1 && p.y >= boxes_[k].y0 && p.y <= boxes_[k].y1 &&
+          inside(p, obs_->polygons[k]))
+        return true;
+    return false;
+  }
+
+  // Distance from segment ab to the nearest polygon edge (0 when it touches one); +inf if none.
+  double edge_distance(const Point2& a, const Point2& b) const {
+    if (edges_.empty()) return kInf;
     Box sb;
     sb.add(a), sb.add(b);
-    for (std::size_t k = 0; k < obs->polygons.size() && best > 0.0; ++k) {
-      if (boxes[k].gap(sb) >= best) continue;
-      const Polygon& poly = obs->polygons[k];
-      if (inside(a, poly) || inside(b, poly)) return 0.0;
-      const auto& v = poly.vertices;
-      for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
-        best = std::min(best, segment_segment(a, b, v[j], v[i]));
+    double best = kInf;
+    ++query_;
+    // Search cells within r of the segment's box, doubling r until the best edge found is within r
+    // (every edge nearer than r has a point in those cells) or the whole grid has been seen.
+    for (double r = cell_;; r *= 2.0) {
+      const long x0 = cx_of(sb.x0 - r), x1 = cx_of(sb.x1 + r), y0 = cy_of(sb.y0 - r), y1 = cy_of(sb.y1 + r);
+      for (long cx = x0; cx <= x1; ++cx)
+        for (long cy = y0; cy <= y1; ++cy)
+          for (std::size_t e : grid_[idx(cx, cy)]) {
+            if (stamp_[e] == query_) continue;
+            stamp_[e] = query_;
+            best = std::min(best, segment_segment(a, b, edges_[e].first, edges_[e].second));
+          }
+      const bool all = x0 == 0 && y0 == 0 && x1 == nx_ - 1 && y1 == ny_ - 1;
+      if (best <= r || all) return best;
     }
+  }
+
+  double circles_distance(const Point2& a, const Point2& b) const {
+    double best = kInf;
+    for (const auto& c : obs_->circles) best = std::min(best, std::max(0.0, point_segment(c.centre, a, b) - c.radius));
     return best;
   }
+
+  // Exact distance from a point (full inside test).
+  double point_distance(const Point2& p) const {
+    return std::min(circles_distance(p, p), inside_any(p) ? 0.0 : edge_distance(p, p));
+  }
+
+ private:
+  long cx_of(double x) const { return std::clamp(static_cast<long>(std::floor((x - all_.x0) / cell_)), 0L, nx_ - 1); }
+  long cy_of(double y) const { return std::clamp(static_cast<long>(std::floor((y - all_.y0) / cell_)), 0L, ny_ - 1); }
+  std::size_t idx(long cx, long cy) const { return static_cast<std::size_t>(cx * ny_ + cy); }
+
+  const FixedObstacles* obs_;
+  std::vector<Box> boxes_;
+  std::vector<std::pair<Point2, Point2>> edges_;
+  Box all_;
+  double cell_ = 1.0;
+  long nx_ = 1, ny_ = 1;
+  std::vector<std::vector<std::size_t>> grid_;
+  mutable std::vector<unsigned> stamp_;  // last query that looked at each edge
+  mutable unsigned query_ = 0;
+};
+
+// Walks the own ship's samples in order. A segment that touches no polygon edge cannot change
+// whether the ship is inside a polygon, so the (costly) inside test runs only at the first sample
+// and after a boundary was touched.
+class ObstacleWalker {
+ public:
+  explicit ObstacleWalker(const ObstacleIndex& index) : index_(index) {}
+  // Returns {distance at p, minimum distance on the segment from the previous point to p}.
+  std::pair<double, double> step(const Point2& p) {
+    const double circles = index_.circles_distance(p, p);
+    if (!have_) {
+      have_ = true, last_ = p, inside_ = index_.inside_any(p);
+      const double d = std::min(circles, inside_ ? 0.0 : index_.edge_distance(p, p));
+      return {d, d};
+    }
+    const double seg_edges = index_.edge_distance(last_, p);
+    const bool was_inside = inside_;
+    if (seg_edges == 0.0) inside_ = index_.inside_any(p);
+    const double at_p = std::min(circles, inside_ ? 0.0 : index_.edge_distance(p, p));
+    const double seg = std::min(index_.circles_distance(last_, p), was_inside || inside_ ? 0.0 : seg_edges);
+    last_ = p;
+    return {at_p, seg};
+  }
+
+ private:
+  const ObstacleIndex& index_;
+  bool have_ = false, inside_ = false;
+  Point2 last_;
 };
 
 // Closest distance of two ships moving linearly between samples i and i+1 (exact for straight
@@ -295,7 +387,7 @@ double distance_to_polygon(const Point2& p, const Polygon& poly) {
 }
 
 double distance_to_obstacles(const Point2& p, const FixedObstacles& obs) {
-  return ObstacleIndex(obs).segment_distance(p, p);
+  return ObstacleIndex(obs).point_distance(p);
 }
 
 double distance_to_path(const Point2& p, const std::vector<PlannedWaypoint>& wps) {
@@ -333,10 +425,10 @@ DistanceSeries distance_series(const RunRecord& run) {
   }
   if (!run.obstacles.empty()) {
     const ObstacleIndex index(run.obstacles);
+    ObstacleWalker walk(index);
     d.fixed.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const Point2 p = pos(run.own.states[i]);
-      d.fixed[i] = index.segment_distance(p, p);
+      d.fixed[i] = walk.step(pos(run.own.states[i])).first;
       d.closest[i] = std::min(d.closest[i], d.fixed[i]);
     }
   }
@@ -577,9 +669,9 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
   }
   if (!run.obstacles.empty()) {
     const ObstacleIndex index(run.obstacles);
-    m.min_distance_fixed = index.segment_distance(pos(own[0]), pos(own[0]));
-    for (std::size_t i = 0; i + 1 < n; ++i)
-      m.min_distance_fixed = std::min(m.min_distance_fixed, index.segment_distance(pos(own[i]), pos(own[i + 1])));
+    ObstacleWalker walk(index);
+    m.min_distance_fixed = kInf;
+    for (std::size_t i = 0; i < n; ++i) m.min_distance_fixed = std::min(m.min_distance_fixed, walk.step(pos(own[i])).second);
     m.min_distance = std::min(m.min_distance, m.min_distance_fixed);
   }
   if (!std::isfinite(m.min_distance)) m.min_distance = kNaN;  // nothing to be close to
