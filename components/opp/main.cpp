@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
       hooks.elapsed = [wall] { return wall->now_s(); };
       const bool warm = p.warm_start && st->warm_goal == goal.goal_id && !st->last_path.empty();
       const opp::Result r = opp::plan(pb, prm, hooks, warm ? st->last_path : std::vector<opp::Vec2>{});
-      st->policy.planned(now, goal.goal_id, targets);
+      st->policy.planned(now, goal.goal_id, targets, !r.path.empty());
 
       msg::Path out;
       out.header = c->header();

@@ -29,6 +29,18 @@ TEST(ReplanPolicy, PeriodGoalAndTrackChange) {
   EXPECT_EQ(pol.due(5, 1, more), "new target 9");
 }
 
+TEST(ReplanPolicy, RetriesSoonAfterAFailedPlan) {
+  opp::ReplanParams p;
+  p.period = 15;
+  p.min_interval = 2;
+  opp::ReplanPolicy pol(p);
+  pol.planned(0, 1, {}, false);
+  EXPECT_EQ(pol.due(1, 1, {}), "");
+  EXPECT_EQ(pol.due(2.5, 1, {}), "retry after a failed plan");
+  pol.planned(2.5, 1, {}, true);
+  EXPECT_EQ(pol.due(5, 1, {}), "");
+}
+
 TEST(ReplanPolicy, RejectsBadParams) {
   opp::ReplanParams p;
   p.period = 0;

@@ -21,6 +21,7 @@ std::string ReplanPolicy::due(double t, uint32_t goal_id, const std::vector<Targ
   if (goal_id != goal_id_) return "new goal " + std::to_string(goal_id);
   if (t - t_last_ >= p_.period) return "period";
   if (t - t_last_ < p_.min_interval) return "";
+  if (!ok_) return "retry after a failed plan";
   const double dt = t - t_last_;
   for (const Target& n : targets) {
     const Target* o = nullptr;
@@ -42,8 +43,9 @@ std::string ReplanPolicy::due(double t, uint32_t goal_id, const std::vector<Targ
   return "";
 }
 
-void ReplanPolicy::planned(double t, uint32_t goal_id, const std::vector<Target>& targets) {
+void ReplanPolicy::planned(double t, uint32_t goal_id, const std::vector<Target>& targets, bool ok) {
   any_ = true;
+  ok_ = ok;
   t_last_ = t;
   goal_id_ = goal_id;
   targets_ = targets;

@@ -26,12 +26,14 @@ class ReplanPolicy {
   // A non-empty reason when a plan is due at time t [s] for goal `goal_id` and the targets as
   // predicted at t (Target::p at time t).
   std::string due(double t, uint32_t goal_id, const std::vector<Target>& targets) const;
-  // Records the plan made at time t with these inputs.
-  void planned(double t, uint32_t goal_id, const std::vector<Target>& targets);
+  // Records the plan made at time t with these inputs; after a failed plan (`ok` false: no path or
+  // invalid input) the next one is due after min_interval instead of a whole period.
+  void planned(double t, uint32_t goal_id, const std::vector<Target>& targets, bool ok = true);
 
  private:
   ReplanParams p_;
   bool any_ = false;
+  bool ok_ = true;
   double t_last_ = 0.0;
   uint32_t goal_id_ = 0;
   std::vector<Target> targets_;  // as predicted at t_last_
