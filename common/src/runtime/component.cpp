@@ -159,7 +159,7 @@ void Component::fire_due_timers() {
     if (now < t.next_ns) continue;
     t.cb();
     // Skip missed periods rather than firing a burst: the callbacks read the current state anyway.
-    while (t.next_ns <= now) t.next_ns += t.period_ns;
+    t.next_ns += ((now - t.next_ns) / t.period_ns + 1) * t.period_ns;
   }
 }
 
