@@ -371,3 +371,26 @@ TEST(Planner, WarmStartReusesThePreviousPlan) {
   s2.problem = p2;
   expect_valid(p2, prm, r2);
 }
+
+TEST(PlannerColreg, PaperScenario1GivesWayToTheTargetFromStarboard) {
+  // Seed 000 §7.1: target 1 comes from starboard on a collision course; the compliant plan passes
+  // astern of it: when the own ship crosses target 1's track, target 1 is already past that point.
+  const auto s = opp::paper_scenario(1);
+  const opp::Target& t1 = s.problem.targets[0];
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
+    const auto r = run(s, seed, 3000);
+    ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+    double prev_side = 0;
+    bool crossed = false;
+    for (double tt = 0; tt <= r.path.back().t; tt += 1.0) {
+      const opp::Vec2 x = at(r, tt), y = t1.p + tt * t1.v;
+      const double side = opp::cross(t1.v, x - y);
+      if (prev_side != 0 && side * prev_side < 0) {
+        crossed = true;
+        EXPECT_LT(opp::dot(x - y, t1.v), 0.0) << "seed " << seed << ": crossed ahead of target 1 at t = " << tt;
+      }
+      prev_side = side;
+    }
+    EXPECT_TRUE(crossed) << "seed " << seed;
+  }
+}
