@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
     auto& tracks_out = c.publisher<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(3 * p.period));
     auto& enc_out =
         c.publisher<msg::EncounterList>(mpgc::topics::kEncounters, mpgc::dds::QosProfile::state(3 * p.period));
+    // Captured by value below: this lambda is a local of setup, which returns before spin().
     auto report = [&c](const char* topic, const std::vector<sa::Rejection>& why) {
       for (const auto& r : why) c.reject(r.reason, std::string(topic) + ": " + r.detail);
     };
@@ -169,12 +170,14 @@ int main(int argc, char** argv) {
           tracker->advance(s.header.stamp_ns);
         },
         check_nav);
-    c.subscribe<msg::AisReport>(mpgc::topics::kAis, mpgc::dds::QosProfile::command(64), [&](const msg::AisReport& r) {
-      report(mpgc::topics::kAis, tracker->add_ais(to_input(r), c.now_ns()));
-    });
-    c.subscribe<msg::RadarScan>(mpgc::topics::kRadar, mpgc::dds::QosProfile::state(), [&](const msg::RadarScan& s) {
-      report(mpgc::topics::kRadar, tracker->add_radar(to_input(s), c.now_ns()));
-    });
+    c.subscribe<msg::AisReport>(mpgc::topics::kAis, mpgc::dds::QosProfile::command(64),
+                                [&, report](const msg::AisReport& r) {
+                                  report(mpgc::topics::kAis, tracker->add_ais(to_input(r), c.now_ns()));
+                                });
+    c.subscribe<msg::RadarScan>(mpgc::topics::kRadar, mpgc::dds::QosProfile::state(),
+                                [&, report](const msg::RadarScan& s) {
+                                  report(mpgc::topics::kRadar, tracker->add_radar(to_input(s), c.now_ns()));
+                                });
 
     c.every(p.period, [&] {
       const int64_t now = c.now_ns();
