@@ -445,3 +445,31 @@ TEST(TrackerParams, ValidateNamesTheField) {
   p.gate = std::nan("");
   EXPECT_THROW(sa::Tracker{p}, std::invalid_argument);
 }
+
+TEST(Tracker, RadarContactsFuseIntoAnExistingAisTrack) {
+  std::mt19937_64 rng(31);
+  std::normal_distribution<double> n01;
+  sa::Tracker trk(sa::TrackerParams{});
+  const mpgc::geo::LatLon origin{deg2rad(58.76), deg2rad(10.49)};
+  trk.set_origin(origin);
+  const mpgc::geo::LocalNed ned(origin);
+  Truth s{sa::Vec4(2500, -1200, -3, 2)};
+  for (int k = 0; k <= 40; ++k) {
+    const int64_t t = k * kSec;
+    if (k > 0) step(s, 1, 1e-4, rng);
+    if (k % 10 == 0) {  // AIS first, then every 10 s
+      const auto ll = ned.to_latlon({s.x(0) + 5 * n01(rng), s.x(1) + 5 * n01(rng)});
+      ASSERT_TRUE(trk.add_ais({257000007, t, ll.lat, ll.lon, std::atan2(s.x(3), s.x(2)), s.x.tail<2>().norm(), 60}, t)
+                      .empty());
+    }
+    if (k > 0) {
+      ASSERT_TRUE(trk.add_radar(scan(t, {observe(s.x, 0, 0, 10, deg2rad(0.4), rng)}), t).empty());
+    }
+  }
+  ASSERT_EQ(trk.tracks().size(), 1u);  // one ship, one track
+  const sa::Track& t = trk.tracks()[0];
+  EXPECT_EQ(t.mmsi, 257000007u);
+  EXPECT_EQ(t.sources, sa::kSourceAis | sa::kSourceRadar);
+  EXPECT_EQ(t.updated_ns, 40 * kSec);
+  EXPECT_LT((t.x.head<2>() - s.x.head<2>()).norm(), 20.0);
+}
