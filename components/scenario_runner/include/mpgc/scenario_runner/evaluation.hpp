@@ -124,7 +124,9 @@ struct RunRecord {
 //     long)
 // The reference length is chosen so that r_min_cpa = 10 L: for the paper scenarios (KVLCC2,
 // Lpp = 320 m, s = 32) the minimum acceptable CPA equals the paper's d_safety = 10 Lpp (seed 000
-// §7), stage ranges become 250 / 110 / 20 Lpp and the manoeuvre window 213 s.
+// §7), stage ranges become 250 / 110 / 20 Lpp and the manoeuvre window 213 s. Consequence: the
+// paper's targets start about 100 Lpp away, already inside stage 3, so the stand-on "hold course
+// and speed" verdict is not applicable there unless a scenario sets r_colregs_3_max lower.
 struct EvaluationParams {
   double reference_length = 10.0;  // [m] ship length the defaults are meant for
   double scale = 1.0;              // [-] s applied to the defaults (informational; set by scaled_to)
