@@ -46,7 +46,7 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("replan.min_interval", &p.replan.min_interval, 2.0, "s", 0.0, 600.0, "event-triggered plans no closer than this");
   ps.add("replan.check_period", &p.check_period, 0.5, "s", 0.01, 60.0, "how often the conditions are checked");
   ps.add("plan.time_budget", &q.time_budget, 0.5, "s", 0.001, 60.0, "wall-time budget of one plan");
-  ps.add("plan.max_iterations", &q.max_iterations, 20000, "-", 1, 10000000, "RRT* iterations per plan");
+  ps.add("plan.max_iterations", &q.max_iterations, 20000, "-", 1, 2000000, "RRT* iterations per plan");
   ps.add("plan.compliant_share", &q.compliant_share, 0.5, "-", 0.01, 1.0,
          "budget share after which a compliant pass without any solution is relaxed");
   ps.add("plan.restart_after", &q.restart_after, 1000, "-", 0, 10000000,

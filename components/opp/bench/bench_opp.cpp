@@ -229,7 +229,7 @@ Versus versus(const opp::Scenario& s, int seeds, const std::vector<double>& wall
   for (double w : walls) {
     std::vector<RunOut> a, b;
     for (int i = 0; i < seeds; ++i) {
-      a.push_back(run_ours(s, 2000 + i, 10'000'000, w, {}));
+      a.push_back(run_ours(s, 2000 + i, 2'000'000, w, {}));
       b.push_back(run_ompl(s, 100'000'000, w, {}));
     }
     char name[64];

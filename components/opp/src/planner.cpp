@@ -61,7 +61,8 @@ void Params::validate() const {
   require(fin(goal_bias) && goal_bias >= 0 && goal_bias <= 1, "goal_bias", "must be in [0, 1]");
   require(fin(rewire_factor) && rewire_factor >= 1, "rewire_factor", "must be >= 1");
   require(restart_after >= 0, "restart_after", "must be >= 0");
-  require(max_iterations >= 1 && max_iterations <= 10'000'000, "max_iterations", "must be in [1, 1e7]");
+  // About 100 bytes per node: 2e6 iterations bound the tree to ~200 MB.
+  require(max_iterations >= 1 && max_iterations <= 2'000'000, "max_iterations", "must be in [1, 2e6]");
   require(fin(time_budget) && time_budget > 0, "time_budget", "must be finite and > 0");
   require(fin(compliant_share) && compliant_share > 0 && compliant_share <= 1, "compliant_share",
           "must be in (0, 1]");
@@ -178,7 +179,7 @@ class Tree {
   Tree(const Model& m, const Problem& pb, const Params& pr, Stats& st, const Hooks& hooks, uint64_t seed)
       : m_(m), pb_(pb), pr_(pr), st_(st), hooks_(hooks), rng_(seed) {
     grid_.reset(pb.bounds.min_x, pb.bounds.min_y, pb.bounds.max_x, pb.bounds.max_y);
-    nodes_.reserve(static_cast<size_t>(pr.max_iterations) + 64);
+    nodes_.reserve(static_cast<size_t>(std::min(pr.max_iterations, 100000)) + 64);  // grows beyond
     const double dim = 2.0;
     k_rrt_ = pr.rewire_factor * (std::exp(1.0) + std::exp(1.0) / dim);
     const double measure = (pb.bounds.max_x - pb.bounds.min_x) * (pb.bounds.max_y - pb.bounds.min_y);

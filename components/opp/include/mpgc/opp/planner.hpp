@@ -72,7 +72,7 @@ struct Params {
   int restart_after = 0;               // [-] iterations without improvement after which a fresh tree
                                        //     is grown (best kept); 0 = one tree (plain RRT*)
   // Budgets.
-  int max_iterations = 20000;          // [-] per plan (both passes together)
+  int max_iterations = 20000;          // [-] per plan (both passes together), <= 2e6
   double time_budget = 0.5;            // [s] per plan, measured with Hooks::elapsed (if given)
   double compliant_share = 0.5;        // [-] budget share after which a compliant pass still
                                        //     without any solution gives way to the relaxed pass
