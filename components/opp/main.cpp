@@ -65,6 +65,8 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("plan.gamma_f", &q.gamma_f, 1e5, "m^2", 0.0, 1e12, "weight of the fixed-obstacle margin cost (eq. 7)");
   ps.add("plan.gamma_m", &q.gamma_m, 1e5, "m^2", 0.0, 1e12, "weight of the target margin cost (eq. 8)");
   ps.add("plan.gamma_l", &q.gamma_l, 1.0, "-", 0.0, 1e6, "weight of the path length (eq. 9)");
+  ps.add("plan.escape_start", &q.escape_start, true,
+         "start within d_safety (target moved in): still plan; the first leg may not get closer (else INVALID_INPUT)");
   ps.add("plan.bounds_margin", &p.bounds_margin, 3000.0, "m", 0.0, 1e6, "sampling box margin around start and goal");
   ps.add("plan.arrival_radius", &p.arrival_radius, 100.0, "m", 0.0, 1e5, "stop planning this close to the goal");
   ps.add("plan.default_speed", &p.default_speed, 5.0, "m/s", 0.1, 50.0, "planned speed when no other is known");

@@ -394,3 +394,28 @@ TEST(PlannerColreg, PaperScenario1GivesWayToTheTargetFromStarboard) {
     EXPECT_TRUE(crossed) << "seed " << seed;
   }
 }
+
+TEST(PlannerInput, EscapeFromInsideTheSafetyDistance) {
+  // A slower target astern to starboard has come within d_safety (500 m): by default an explicit
+  // invalid input; with escape_start a path whose first leg opens the distance, every later leg
+  // normal. (When no leg within the turn limit can open the distance the answer is kNoPath.)
+  auto s = canonical({1, {-300, 200}, {2, 0}});
+  auto r = run(s, 1, 3000);
+  EXPECT_EQ(r.status, opp::Status::kInvalidInput);
+  s.params.escape_start = true;
+  r = run(s, 1, 3000);
+  ASSERT_TRUE(r.status == opp::Status::kOk || r.status == opp::Status::kRelaxed) << r.reason;
+  EXPECT_NE(r.reason.find("escape"), std::string::npos) << r.reason;
+  EXPECT_EQ(opp::check_path(s.problem, s.params, points(r), false), "");
+  const auto& t = s.problem.targets[0];
+  const double d0 = opp::norm(t.p - s.problem.start);
+  // First leg: never closer than at the start; afterwards: at least d_safety.
+  for (double tt = 0; tt <= r.path.back().t; tt += 0.5) {
+    const double d = opp::norm(at(r, tt) - (t.p + tt * t.v));
+    if (tt <= r.path[1].t) {
+      EXPECT_GE(d, d0 - 1e-6) << tt;
+    } else {
+      EXPECT_GE(d, s.params.safety_distance - 1e-6) << tt;
+    }
+  }
+}

@@ -112,14 +112,17 @@ class Model {
   }
 
   // eq. 3-4 along the leg a -> b started at time ta, against every target; plus §5 if colreg.
-  Reject moving_ok(Vec2 a, double ta, Vec2 b, double len, bool colreg) const {
+  // `escape`: a leg from a start that is already inside d_safety of a target may not get closer
+  // to it than it starts (Params::escape_start).
+  Reject moving_ok(Vec2 a, double ta, Vec2 b, double len, bool colreg, bool escape = false) const {
     if (pb_.targets.empty()) return kOkEdge;
     const Vec2 vel = (pb_.speed / len) * (b - a);
     const double T = len * inv_u_;
     for (const Target& tg : pb_.targets) {
       const Vec2 y = tg.p + ta * tg.v;
       const Vec2 r0 = a - y;
-      if (min_dist2_linear(r0, vel - tg.v, T) < ds2_) return kTarget;
+      const double lim = escape ? std::min(ds2_, norm2(r0) * (1.0 - 1e-9)) : ds2_;
+      if (min_dist2_linear(r0, vel - tg.v, T) < lim) return kTarget;
       if (!colreg) continue;
       // §5 at the leg's start; a leg longer than one step is checked every step along it, as the
       // chain of collinear waypoints it stands for (a long edge must not jump over the zone).
@@ -186,6 +189,8 @@ class Tree {
     r_rrt_ = pr.rewire_factor * std::sqrt(2.0 * (1.0 + 1.0 / dim) * (measure / kPi));
     goal_fixed_ = m_.fixed_term(pb.goal.p);
     approach_ = std::isfinite(pb.goal.heading) && pb.goal.heading_tolerance < kPi;
+    root_fixed_d_ = pr.safety_distance;
+    if (pr.escape_start && pb.fixed) root_fixed_d_ = std::min(pr.safety_distance, pb.fixed->nearest(pb.start) * (1.0 - 1e-9));
     Node root;
     root.p = pb.start;
     root.dir = {std::cos(pb.heading), std::sin(pb.heading)};
@@ -210,8 +215,8 @@ class Tree {
       if (len < 1e-9) continue;
       const bool root = cur == 0;
       if (!m_.turn_ok(a.dir, seg, len, root)) break;
-      if (edge_reject(a.p, a.len * inv_speed(), p, len) != Model::kOkEdge) break;
-      if (!m_.fixed().segment_clear(a.p, p, pr_.safety_distance)) break;
+      if (edge_reject(a.p, a.len * inv_speed(), p, len, root) != Model::kOkEdge) break;
+      if (!m_.fixed().segment_clear(a.p, p, root ? root_fixed_d_ : pr_.safety_distance)) break;
       Node n;
       n.p = p;
       n.dir = (1.0 / len) * seg;
@@ -286,7 +291,7 @@ class Tree {
     for (const Cand& c : cand_) {
       const Node& a = nodes_[c.idx];
       ++st_.edge_checks;
-      const auto r = edge_reject(a.p, a.len * inv_speed(), xnew, c.len);
+      const auto r = edge_reject(a.p, a.len * inv_speed(), xnew, c.len, c.idx == 0);
       if (r != Model::kOkEdge) {
         ++rejects_[r];
         continue;
@@ -385,12 +390,13 @@ class Tree {
   }
 
   bool fixed_clear(int j, Vec2 a, Vec2 b) {
+    if (j == 0) return m_.fixed().segment_clear(a, b, root_fixed_d_);  // leg from the start (escape)
     if (fixed_cache_[j] == 0) fixed_cache_[j] = m_.fixed().segment_clear(a, b, pr_.safety_distance) ? 1 : 2;
     return fixed_cache_[j] == 1;
   }
 
-  Model::Reject edge_reject(Vec2 a, double ta, Vec2 b, double len) const {
-    return m_.moving_ok(a, ta, b, len, colreg);
+  Model::Reject edge_reject(Vec2 a, double ta, Vec2 b, double len, bool from_root = false) const {
+    return m_.moving_ok(a, ta, b, len, colreg, from_root && pr_.escape_start);
   }
 
   // Tries the edge node -> goal (heading tolerance, turn, targets, COLREG, fixed).
@@ -413,12 +419,12 @@ class Tree {
     }
     const double ta = a.len * inv_speed();
     ++st_.edge_checks;
-    const auto r = edge_reject(a.p, ta, pb_.goal.p, len);
+    const auto r = edge_reject(a.p, ta, pb_.goal.p, len, i == 0);
     if (r != Model::kOkEdge) {
       ++rejects_[r];
       return;
     }
-    if (!m_.fixed().segment_clear(a.p, pb_.goal.p, pr_.safety_distance)) {
+    if (!m_.fixed().segment_clear(a.p, pb_.goal.p, i == 0 ? root_fixed_d_ : pr_.safety_distance)) {
       ++rejects_[Model::kFixed];
       return;
     }
@@ -563,7 +569,7 @@ class Tree {
   double snap_cost_ = kInf;
   bool snap_compliant_ = false;
   std::vector<Vec2> snap_;
-  double k_rrt_ = 0, r_rrt_ = 0, goal_fixed_ = 0;
+  double k_rrt_ = 0, r_rrt_ = 0, goal_fixed_ = 0, root_fixed_d_ = 0;
   uint64_t rejects_[Model::kRejectCount] = {};
   int goal_attempts_ = 0;
   double closest_goal_ = kInf;
@@ -592,14 +598,14 @@ std::string validate_problem(const Problem& pb, const Params& pr) {
   }
   if (pb.fixed) {
     const double ds = pb.fixed->nearest(pb.start);
-    if (ds < pr.safety_distance || ds <= 0.0)
+    if (ds <= 0.0 || (ds < pr.safety_distance && !pr.escape_start))
       return "start is within the safety distance of a fixed obstacle (" + fmt(ds) + " m < " + fmt(pr.safety_distance) + " m)";
     const double dg = pb.fixed->nearest(pb.goal.p);
     if (dg < pr.safety_distance || dg <= 0.0)
       return "goal is inside or within the safety distance of a fixed obstacle (" + fmt(dg) + " m < " +
              fmt(pr.safety_distance) + " m)";
   }
-  for (size_t i = 0; i < pb.targets.size(); ++i) {
+  for (size_t i = 0; i < pb.targets.size() && !pr.escape_start; ++i) {
     const double d = norm(pb.targets[i].p - pb.start);
     if (d < pr.safety_distance)
       return "start is within the safety distance of target " + std::to_string(i) + " (id " +
@@ -709,6 +715,15 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
   res.relaxed = problem.colreg && !best_compliant;
   res.status = res.relaxed ? Status::kRelaxed : Status::kOk;
   if (res.relaxed) res.reason = "no COLREG-compliant path within the compliant budget share; constraint relaxed";
+  if (params.escape_start) {
+    std::string inside;
+    if (problem.fixed && problem.fixed->nearest(problem.start) < params.safety_distance) inside = "a fixed obstacle";
+    for (const Target& t : problem.targets)
+      if (inside.empty() && norm(t.p - problem.start) < params.safety_distance) inside = "target id " + std::to_string(t.id);
+    if (!inside.empty())
+      res.reason += std::string(res.reason.empty() ? "" : "; ") + "start within d_safety of " + inside +
+                    ": the first leg only keeps its initial distance (escape)";
+  }
   res.colreg_compliant = check_path(problem, params, pts, true).empty();
   res.cost = path_cost(problem, params, pts);
   double len = 0.0;
@@ -732,8 +747,10 @@ std::string check_path(const Problem& pb, const Params& pr, const std::vector<Ve
     const std::string leg = "leg " + std::to_string(i) + ": ";
     if (!(len > 0.0)) return leg + "zero length";
     if (!m.turn_ok(dir, seg, len, i == 0)) return leg + "turning angle exceeds max_turn (eq. 2)";
-    if (!m.fixed().segment_clear(a, b, pr.safety_distance)) return leg + "closer than d_safety to a fixed obstacle";
-    const auto r = m.moving_ok(a, len_acc / pb.speed, b, len, colreg);
+    const bool esc = i == 0 && pr.escape_start;
+    const double dfix = esc ? std::min(pr.safety_distance, m.fixed().nearest(a) * (1.0 - 1e-9)) : pr.safety_distance;
+    if (!m.fixed().segment_clear(a, b, dfix)) return leg + "closer than d_safety to a fixed obstacle";
+    const auto r = m.moving_ok(a, len_acc / pb.speed, b, len, colreg, esc);
     if (r == Model::kTarget) return leg + "closer than d_safety to a target (eq. 3-4)";
     if (r == Model::kColreg) return leg + "not COLREG-compliant (§5)";
     dir = (1.0 / len) * seg;

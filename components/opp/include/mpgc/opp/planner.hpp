@@ -56,6 +56,9 @@ struct Params {
   double colreg_distance = 3000.0;     // [m] d_COLREG (> d_safety): COLREG checked inside it, §5
   double max_turn = 1.0471975511965976;  // [rad] limit of |theta_p|, eq. 2 (>= pi disables it)
   bool turn_limit_at_start = true;     // also limit the first waypoint's turn from the own heading
+  bool escape_start = false;           // start within d_safety of an obstacle or target: plan anyway,
+                                       // legs from the start may not get closer than they start
+                                       // (false: Status::kInvalidInput)
   ColregParams colreg;                 // theta_o, theta_h (22.5 deg), eq. 13 tolerance
   // Cost weights of eq. 5.
   double gamma_s = 0.0;                // [1/rad^2] steering, eq. 6
