@@ -165,9 +165,12 @@ Scenario parse_scenario(const std::string& yaml, const std::string& origin) {
   s.goal_heading_tolerance = geo::deg2rad(number(origin, g, "heading_tolerance_deg", 180, 0, 180));
   s.cruise_speed = number(origin, g, "speed_kn", 0, 0, 40) * geo::kKnot;
 
-  const YAML::Node sd = lpp_to_metres(root, s.lpp)["safety_distance_m"];
-  if (!sd) fail(origin, root, "safety_distance_m", "is required (or safety_distance_lpp)");
-  s.safety_distance = number(origin, lpp_to_metres(root, s.lpp), "safety_distance_m", 0, 1.0, 1e5, true);
+  if (root["safety_distance_m"] && root["safety_distance_lpp"])
+    fail(origin, root, "safety_distance_m", "give safety_distance_m or safety_distance_lpp, not both");
+  if (root["safety_distance_lpp"])
+    s.safety_distance = s.lpp * number(origin, root, "safety_distance_lpp", 0, 0.01, 1000.0, true);
+  else
+    s.safety_distance = number(origin, root, "safety_distance_m", 0, 1.0, 1e5, true);
   s.colreg = boolean(origin, root, "colreg", true);
   s.time_limit = number(origin, root, "time_limit_s", 0, 1.0, 1e6, true);
 
