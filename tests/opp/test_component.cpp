@@ -19,6 +19,7 @@
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/testing.hpp"
+#include "mpgc/testing_dds.hpp"
 #include "mpgc/topics.hpp"
 
 extern char** environ;
@@ -27,47 +28,13 @@ namespace dds = mpgc::dds;
 
 namespace {
 
-class Process {
- public:
-  explicit Process(std::vector<std::string> args) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
-  }
-  ~Process() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGTERM);
-    int st = 0;
-    for (int i = 0; i < 100 && waitpid(pid_, &st, WNOHANG) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (waitpid(pid_, &st, WNOHANG) == 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, &st, 0);
-    }
-  }
-  bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
-
- private:
-  pid_t pid_ = -1;
-};
+using mpgc::testing::Process;
 
 int64_t wall_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-template <class T, class Pred>
-bool wait_for(dds::Reader<T>& r, T& out, Pred pred, double timeout_s) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < end) {
-    for (auto& s : r.take())
-      if (pred(s.value)) {
-        out = s.value;
-        return true;
-      }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return false;
-}
+using mpgc::testing::wait_for;
 
 }  // namespace
 

@@ -4,7 +4,13 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 #include <stdexcept>
 
 namespace mpgc::testing {
@@ -31,5 +37,28 @@ static std::string env_or(const char* name, const std::string& fallback) {
 std::string shared_data(const std::string& rel) { return env_or("MPGC_SHARED_DATA", "../shared/data") + "/" + rel; }
 std::string bin_dir() { return env_or("MPGC_BIN_DIR", "."); }
 std::string source_dir() { return env_or("MPGC_SOURCE_DIR", "."); }
+
+extern "C" char** environ;
+
+Process::Process(std::vector<std::string> args) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ) != 0) pid_ = -1;
+}
+
+Process::~Process() {
+  if (pid_ <= 0) return;
+  kill(pid_, SIGTERM);
+  int st = 0;
+  for (int i = 0; i < 100 && waitpid(pid_, &st, WNOHANG) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  if (waitpid(pid_, &st, WNOHANG) == 0) {
+    kill(pid_, SIGKILL);
+    waitpid(pid_, &st, 0);
+  }
+}
+
+bool Process::running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
 
 }  // namespace mpgc::testing

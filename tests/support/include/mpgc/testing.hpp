@@ -2,6 +2,8 @@
 #pragma once
 
 #include <string>
+#include <sys/types.h>
+#include <vector>
 
 namespace mpgc::testing {
 
@@ -14,5 +16,18 @@ std::string shared_data(const std::string& rel);
 // $MPGC_BIN_DIR: the build's bin/ folder with every executable.
 std::string bin_dir();
 std::string source_dir();
+
+// A child process (a component under test): SIGTERM on destruction, SIGKILL after 5 s.
+class Process {
+ public:
+  explicit Process(std::vector<std::string> args);  // args[0]: the executable
+  ~Process();
+  Process(const Process&) = delete;
+  Process& operator=(const Process&) = delete;
+  bool running() const;
+
+ private:
+  pid_t pid_ = -1;
+};
 
 }  // namespace mpgc::testing
