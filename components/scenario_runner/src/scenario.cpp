@@ -163,7 +163,11 @@ Scenario parse_scenario(const std::string& yaml, const std::string& origin) {
   s.goal.radius = number(origin, g, "arrival_radius_m", 2 * s.lpp, 1.0, 1e5);
   if (g["heading_deg"]) s.goal_heading = geo::deg2rad(number(origin, g, "heading_deg", 0, -360, 360));
   s.goal_heading_tolerance = geo::deg2rad(number(origin, g, "heading_tolerance_deg", 180, 0, 180));
-  s.cruise_speed = number(origin, g, "speed_kn", 0, 0, 40) * geo::kKnot;
+  // The mission speed defaults to the own ship's start speed: planning at the current speed instead
+  // would make every speed loss in a turn permanent (the planned speed is the guidance's set point).
+  const YAML::Node own = s.world["own_ship"];
+  const double start_kn = own && own["speed_kn"] ? number(origin, own, "speed_kn", 0, 0, 40) : 0.0;
+  s.cruise_speed = number(origin, g, "speed_kn", start_kn, 0, 40) * geo::kKnot;
 
   if (root["safety_distance_m"] && root["safety_distance_lpp"])
     fail(origin, root, "safety_distance_m", "give safety_distance_m or safety_distance_lpp, not both");

@@ -25,7 +25,7 @@ struct Scenario {
   Goal goal;                     // [m] arrival point and radius
   double goal_heading = std::numeric_limits<double>::quiet_NaN();  // [rad] NaN: any
   double goal_heading_tolerance = 3.14159265358979323846;          // [rad]
-  double cruise_speed = 0.0;     // [m/s] 0: the planner uses the current speed
+  double cruise_speed = 0.0;     // [m/s] goal.speed_kn, else the own ship's start speed; 0: current speed
   double safety_distance = 0.0;  // [m] d_safety
   bool colreg = true;            // COLREG-compliant paths required first
   std::string chart_shapes;      // obstacle_manager chart.shapes (NED metres)
