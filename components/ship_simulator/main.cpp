@@ -76,10 +76,12 @@ int main(int argc, char** argv) {
                  world->own().name(), cfg.targets.size(), p.mode, p.step, p.participants);
 
     auto& clock_w = c.publisher<msg::Clock>(topics::kClock, dds::QosProfile::command(16));
-    auto& nav_w = c.publisher<msg::NavState>(topics::kOwnState, dds::QosProfile::state(3 * cfg.nav.period * wall_per_sim));
+    // Reliable state writers (deterministic()): the components on simulated time read them reliably.
+    const auto state = [](double deadline_s) { return dds::QosProfile::state(deadline_s).deterministic(); };
+    auto& nav_w = c.publisher<msg::NavState>(topics::kOwnState, state(3 * cfg.nav.period * wall_per_sim));
     auto& ais_w = c.publisher<msg::AisReport>(topics::kAis, dds::QosProfile::command(64));
-    auto& radar_w = c.publisher<msg::RadarScan>(topics::kRadar, dds::QosProfile::state(3 * cfg.radar.period * wall_per_sim));
-    auto& truth_w = c.publisher<msg::GroundTruth>(topics::kTruth, dds::QosProfile::state(3 * p.truth_period * wall_per_sim));
+    auto& radar_w = c.publisher<msg::RadarScan>(topics::kRadar, state(3 * cfg.radar.period * wall_per_sim));
+    auto& truth_w = c.publisher<msg::GroundTruth>(topics::kTruth, state(3 * p.truth_period * wall_per_sim));
 
     struct State {
       sim::ShipCommand cmd;
@@ -172,7 +174,10 @@ int main(int argc, char** argv) {
       c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
         const auto r = barrier->ack(a.component, a.step);
         if (r == sim::LockstepBarrier::Ack::Unknown) c.count("lockstep.unknown_acks");
-        if (r == sim::LockstepBarrier::Ack::Counted && barrier->complete()) advance();
+        if (r != sim::LockstepBarrier::Ack::Counted || !barrier->complete()) return;
+        // The participants wrote their commands before their acks: read them all before stepping.
+        c.poll();
+        advance();
       });
       // Start, and resend the current Clock when an ack (or the Clock itself) was lost.
       c.every(std::min(0.05, p.ack_timeout / 2), [&, st, barrier, advance] {

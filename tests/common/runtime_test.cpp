@@ -125,6 +125,62 @@ TEST(Runtime, TimersOfAStepSeeTheDataPublishedBeforeItsClock) {
   for (uint64_t k = 0; k < kSteps; ++k) EXPECT_EQ(seen[k].second, k + 1) << "step " << k;
 }
 
+// Determinism on simulated time: a sample another component stamped at the current tick reaches
+// the timers of the next tick, however fast it arrives; the clock publisher's samples of a step
+// belong to that step; a sample stamped on the wall clock is delivered without waiting for a tick.
+TEST(Runtime, OnSimulatedTimeAPeersSampleOfAStepCountsFromTheNextTick) {
+  rt::Component c("sim_node", runtime("sim"), quiet());
+  uint64_t peer_v = 0, sim_v = 0;
+  std::atomic<uint64_t> wall_v{0};
+  std::vector<std::pair<uint64_t, uint64_t>> seen;  // (peer, simulator) value per tick
+  c.subscribe<msg::ComponentHealth>("test/peer", dds::QosProfile::state(), [&](const msg::ComponentHealth& h) {
+    if (h.header.stamp_ns > 1'000'000'000'000'000'000)
+      wall_v = h.rejected_inputs;
+    else
+      peer_v = h.rejected_inputs;
+  });
+  c.subscribe<msg::ComponentHealth>("test/sim", dds::QosProfile::state(),
+                                    [&](const msg::ComponentHealth& h) { sim_v = h.rejected_inputs; });
+  c.every(0.1, [&] { seen.emplace_back(peer_v, sim_v); });
+
+  dds::Participant p(c.participant().domain_id());
+  dds::Topic<msg::Clock> tc(p, mpgc::topics::kClock);
+  dds::Topic<msg::StepAck> ta(p, mpgc::topics::kStepAck);
+  dds::Topic<msg::ComponentHealth> tp(p, "test/peer"), ts(p, "test/sim");
+  dds::Writer<msg::Clock> clock(p, tc, dds::QosProfile::command(16));
+  const auto q = dds::QosProfile::state().deterministic();
+  dds::Writer<msg::ComponentHealth> peer(p, tp, q), sim(p, ts, q);
+  dds::Reader<msg::StepAck> acks(p, ta, dds::QosProfile::command(16));
+  Spinner spin(c);
+  ASSERT_TRUE(wait_for([&] { return clock.matched() && peer.matched() && sim.matched() && acks.matched(); }, 10.0));
+  auto sample = [](int64_t t, const char* source, uint64_t v) {
+    msg::ComponentHealth h;
+    h.header = {t, source, 0};
+    h.rejected_inputs = v;
+    return h;
+  };
+  constexpr uint64_t kSteps = 50;
+  for (uint64_t step = 0; step < kSteps; ++step) {
+    const int64_t t = static_cast<int64_t>(step) * 100'000'000;
+    sim.write(sample(t, "ship_simulator", step + 1));
+    clock.write(msg::Clock{t, step, 100'000'000, true});
+    peer.write(sample(t, "peer", step + 1));  // races the Clock: may arrive before it is handled
+    bool acked = false;
+    ASSERT_TRUE(wait_for([&] {
+      for (auto& a : acks.take()) acked = acked || a.value.step == step;
+      return acked;
+    }, 10.0));
+  }
+  peer.write(sample(1'800'000'000'000'000'000, "monitor", 77));
+  EXPECT_TRUE(wait_for([&] { return wall_v == 77; }, 10.0)) << "a wall-stamped sample waited for a tick";
+  spin.stop();
+  ASSERT_EQ(seen.size(), kSteps);
+  for (uint64_t k = 0; k < kSteps; ++k) {
+    EXPECT_EQ(seen[k].first, k) << "step " << k;
+    EXPECT_EQ(seen[k].second, k + 1) << "step " << k;
+  }
+}
+
 TEST(Runtime, ClockGoingBackwardsIsRejectedAndCounted) {
   rt::Component c("sim_node", runtime("sim"), quiet());
   dds::Participant p(c.participant().domain_id());

@@ -34,6 +34,8 @@ void RuntimeParams::declare(ParamSet& ps, RuntimeParams* p) {
          {"wall", "sim"});
   ps.add("clock.lockstep_ack", &p->lockstep_ack, true,
          "acknowledge every lockstep step on clock/ack after this component's timers ran");
+  ps.add("clock.publisher", &p->clock_publisher, "ship_simulator",
+         "header.source of the clock's publisher: its samples stamped at a tick belong to that tick");
   ps.add("health.period", &p->health_period, 1.0, "s", 0.05, 60.0, "period of the health sample (wall time)");
   ps.add("dds.lease", &p->lease, 1.0, "s", 0.1, 30.0, "automatic liveliness lease of every writer");
   ps.add("log.level", &p->log_level, "info", "log level",
@@ -144,6 +146,13 @@ void Component::on_clock(const msg::Clock& c) {
     reject(topics::kClock, "time went backwards to " + std::to_string(c.time_ns) + " ns");
     return;
   }
+  // Everything that arrived before this Clock is in the readers now; hand over what belongs here.
+  for (auto& s : subs_) s->take(*this);
+  Gate gate;
+  gate.mode = Gate::Mode::Tick;
+  gate.tick_ns = c.time_ns;
+  gate.clock_publisher = &rp_.clock_publisher;
+  for (auto& s : subs_) s->deliver(gate);
   fire_due_timers();
   if (c.lockstep && rp_.lockstep_ack) ack_writer_->write(msg::StepAck{name_, c.step});
 }
@@ -161,6 +170,11 @@ void Component::fire_due_timers() {
     // Skip missed periods rather than firing a burst: the callbacks read the current state anyway.
     t.next_ns += ((now - t.next_ns) / t.period_ns + 1) * t.period_ns;
   }
+}
+
+void Component::poll() {
+  if (sim_clock_ != nullptr) throw std::logic_error("Component::poll is for wall-clock components");
+  for (auto& s : subs_) s->process(*this);
 }
 
 void Component::stop(int exit_code) {
@@ -195,8 +209,13 @@ int Component::spin() {
       log_->error("waitset: {}", dds_strretcode(n));
       return 1;
     }
-    // Data first, then the clock's timers: a clock tick sees the data that arrived with it.
-    for (auto& s : subs_) s->process(*this);
+    // Wall clock: deliver at once. Simulated time: queue, and deliver at the Clock tick.
+    Gate arrival;
+    arrival.mode = Gate::Mode::Arrival;
+    for (auto& s : subs_) {
+      s->take(*this);
+      s->deliver(sim_clock_ == nullptr ? Gate{} : arrival);
+    }
     if (clock_sub_) clock_sub_->process(*this);
     for (auto& l : liveliness_) {
       dds_liveliness_changed_status_t st{};

@@ -44,8 +44,11 @@ Qos::Qos(const QosProfile& p, bool for_writer) : q_(dds_create_qos()) {
   dds_qset_liveliness(q_, DDS_LIVELINESS_AUTOMATIC, to_duration(p.lease_s));
   switch (p.kind) {
     case QosProfile::Kind::State:
-      dds_qset_reliability(q_, DDS_RELIABILITY_BEST_EFFORT, 0);
-      dds_qset_history(q_, DDS_HISTORY_KEEP_LAST, 1);
+      if (p.reliable)
+        dds_qset_reliability(q_, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+      else
+        dds_qset_reliability(q_, DDS_RELIABILITY_BEST_EFFORT, 0);
+      dds_qset_history(q_, DDS_HISTORY_KEEP_LAST, p.reliable ? p.depth : 1);
       dds_qset_deadline(q_, to_duration(p.deadline_s));
       break;
     case QosProfile::Kind::Latched:

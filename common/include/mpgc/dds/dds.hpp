@@ -2,6 +2,7 @@
 // typed writer and reader over the generated C++ value types, and QoS profiles by name.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -64,12 +65,28 @@ struct QosProfile {
   int depth = 1;                                              // [-] history depth per instance
   double deadline_s = std::numeric_limits<double>::infinity();  // [s] State only
   double lease_s = 1.0;                                       // [s] automatic liveliness lease
+  bool reliable = false;  // State only: reliable delivery (simulated time, where a lost sample
+                          // would make a lockstep run depend on timing)
 
   static QosProfile state(double deadline_s = std::numeric_limits<double>::infinity()) {
-    return {Kind::State, 1, deadline_s, 1.0};
+    return {Kind::State, 1, deadline_s, 1.0, false};
   }
-  static QosProfile latched(int depth = 1) { return {Kind::Latched, depth, std::numeric_limits<double>::infinity(), 1.0}; }
-  static QosProfile command(int depth = 10) { return {Kind::Command, depth, std::numeric_limits<double>::infinity(), 1.0}; }
+  static QosProfile latched(int depth = 1) {
+    return {Kind::Latched, depth, std::numeric_limits<double>::infinity(), 1.0, false};
+  }
+  static QosProfile command(int depth = 10) {
+    return {Kind::Command, depth, std::numeric_limits<double>::infinity(), 1.0, false};
+  }
+  // The profile used on simulated time: State becomes reliable with a few samples of history, so
+  // every sample published in a lockstep step reaches its readers whatever the machine's load.
+  QosProfile deterministic() const {
+    QosProfile q = *this;
+    if (q.kind == Kind::State) {
+      q.reliable = true;
+      q.depth = std::max(q.depth, 8);
+    }
+    return q;
+  }
   // "state", "latched", "command"; throws std::invalid_argument naming an unknown profile.
   static QosProfile by_name(const std::string& name);
   const char* name() const;

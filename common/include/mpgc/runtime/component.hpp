@@ -2,6 +2,14 @@
 // waitset-driven executor with subscriptions and periodic timers on the component's clock,
 // health samples, lockstep acknowledgement, and clean shutdown on SIGINT/SIGTERM.
 //
+// On simulated time (clock.source = sim) samples are delivered only at Clock ticks, so a lockstep
+// run is the same on any machine: at the tick of time T a component receives every sample stamped
+// before T, and the samples stamped T by the clock's publisher (the simulator writes a step's
+// sensor data before its Clock). Samples other components stamped T, in the same step, wait for the
+// next tick: whether they arrived before this component saw the Clock is a matter of timing.
+// Samples stamped on another clock (the wall clock: beyond kForeignStamp_ns) are delivered at once.
+// State topics are reliable on simulated time (QosProfile::deterministic) so no sample is lost.
+//
 //   int main(int argc, char** argv) {
 //     MyParams p;
 //     mpgc::rt::ParamSet ps;
@@ -20,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <spdlog/spdlog.h>
@@ -36,6 +45,7 @@ struct RuntimeParams {
   int domain = 0;                 // dds.domain
   std::string clock = "wall";     // clock.source: wall | sim
   bool lockstep_ack = true;       // clock.lockstep_ack: acknowledge lockstep steps
+  std::string clock_publisher = "ship_simulator";  // clock.publisher: header.source of the Clock's writer
   double health_period = 1.0;     // [s] health.period (wall time)
   double lease = 1.0;             // [s] dds.lease: liveliness lease of every writer
   std::string log_level = "info"; // log.level
@@ -61,18 +71,21 @@ class Component {
   template <class T>
   dds::Writer<T>& publisher(const std::string& topic, dds::QosProfile qos) {
     qos.lease_s = rp_.lease;
+    if (sim_clock_ != nullptr) qos = qos.deterministic();
     auto w = std::make_unique<dds::Writer<T>>(participant_, topic_for<T>(topic), qos);
     auto& ref = *w;
     owned_.push_back(std::shared_ptr<void>(std::move(w)));
     return ref;
   }
 
-  // Calls `on_sample` for every valid sample. If `validate` returns a non-empty reason, the sample
-  // is rejected: logged, counted in health ("rejected.<topic>"), and not delivered.
+  // Calls `on_sample` for every valid sample (on simulated time: at the next Clock tick, see the
+  // top of this file). If `validate` returns a non-empty reason, the sample is rejected: logged,
+  // counted in health ("rejected.<topic>"), and not delivered.
   template <class T>
   dds::Reader<T>& subscribe(const std::string& topic, dds::QosProfile qos, std::function<void(const T&)> on_sample,
                             std::function<std::string(const T&)> validate = {}) {
     qos.lease_s = rp_.lease;
+    if (sim_clock_ != nullptr) qos = qos.deterministic();
     auto sub = std::make_unique<Sub<T>>(participant_, topic_for<T>(topic), qos);
     sub->on_sample = std::move(on_sample);
     sub->validate = std::move(validate);
@@ -98,14 +111,42 @@ class Component {
   uint64_t counter(const std::string& name) const;
   void set_health(msg::HealthState state, const std::string& detail);
 
+  // Wall clock only: takes and delivers at once every sample that has arrived, e.g. to read the
+  // commands of a lockstep step before acting on that step's last acknowledgement.
+  void poll();
+
   // Runs until SIGINT/SIGTERM or stop(). Returns the exit code.
   int spin();
   void stop(int exit_code = 0);
 
  private:
+  // [ns] stamps from here on are wall-clock times (2001 onwards), not simulated time (< 3 years).
+  static constexpr int64_t kForeignStamp_ns = 1'000'000'000'000'000'000;
+  // Which queued samples a delivery hands over: all (wall clock), those of a Clock tick, or (on
+  // arrival, simulated time) only those stamped on another clock.
+  struct Gate {
+    enum class Mode { All, Tick, Arrival } mode = Mode::All;
+    int64_t tick_ns = 0;  // [ns] time of the tick
+    const std::string* clock_publisher = nullptr;
+    bool passes() const { return mode != Mode::Arrival; }  // a sample without a header
+    bool passes(const msg::Header& h) const {
+      if (mode == Mode::All || h.stamp_ns >= kForeignStamp_ns) return true;
+      return mode == Mode::Tick && (h.stamp_ns != tick_ns || h.source == *clock_publisher);
+    }
+  };
+  template <class T, class = void>
+  struct HasHeader : std::false_type {};
+  template <class T>
+  struct HasHeader<T, std::void_t<decltype(std::declval<T>().header.stamp_ns)>> : std::true_type {};
+
   struct SubBase {
     virtual ~SubBase() = default;
-    virtual void process(Component& c) = 0;
+    virtual void take(Component& c) = 0;        // validate and queue what has arrived
+    virtual void deliver(const Gate& gate) = 0; // hand the queued samples that pass to on_sample
+    void process(Component& c) {
+      take(c);
+      deliver(Gate{});
+    }
   };
   template <class T>
   struct Sub : SubBase {
@@ -113,7 +154,8 @@ class Component {
     dds::Reader<T> reader;
     std::function<void(const T&)> on_sample;
     std::function<std::string(const T&)> validate;
-    void process(Component& c) override {
+    std::vector<T> queued;
+    void take(Component& c) override {
       for (auto& s : reader.take()) {
         if (validate) {
           const std::string why = validate(s.value);
@@ -122,8 +164,22 @@ class Component {
             continue;
           }
         }
-        if (on_sample) on_sample(s.value);
+        queued.push_back(std::move(s.value));
       }
+    }
+    void deliver(const Gate& gate) override {
+      std::vector<T> now, later;
+      for (auto& v : queued) {
+        bool pass;
+        if constexpr (HasHeader<T>::value)
+          pass = gate.passes(v.header);
+        else
+          pass = gate.passes();
+        (pass ? now : later).push_back(std::move(v));
+      }
+      queued = std::move(later);
+      if (on_sample)
+        for (const auto& v : now) on_sample(v);
     }
   };
   struct Timer {
