@@ -28,6 +28,7 @@ struct Params {
   double step = 0.1;         // [s] simulation step
   double duration = 0.0;     // [s] simulated time after which the simulator exits; 0 = never
   std::string participants;  // comma-separated component names for the lockstep barrier
+  double start_settle = 0.5;  // [s] wall time between all participants alive and step 0
   double ack_timeout = 1.0;  // [s] wall time before the current Clock is sent again
   double truth_period = 0.1; // [s] simulated time between sim/truth samples
 
@@ -38,6 +39,8 @@ struct Params {
     ps.add("time.step", &step, 0.1, "s", 0.001, 1.0, "simulation step (RK4 step of the ship model)");
     ps.add("time.duration", &duration, 0.0, "s", 0.0, 1e7, "simulated time after which to exit (0 = run forever)");
     ps.add("lockstep.participants", &participants, "", "comma-separated components that must ack every step");
+    ps.add("lockstep.start_settle", &start_settle, 0.5, "s", 0.0, 60.0,
+           "wall time to let discovery settle after every participant is alive, before step 0");
     ps.add("lockstep.ack_timeout", &ack_timeout, 1.0, "s", 0.01, 60.0, "resend the Clock after this wall time without progress");
     ps.add("truth.period", &truth_period, 0.1, "s", 0.001, 60.0, "sim/truth publication period (simulated time)");
   }
@@ -89,6 +92,7 @@ int main(int argc, char** argv) {
       bool started = false;
       bool stopped = false;
       int64_t last_progress_wall = 0;
+      int64_t ready_wall = 0;  // [ns] wall time all participants were first seen alive
       int64_t start_wall = 0;
       int64_t next_truth_ns = 0;
       msg::Clock last_clock{};
@@ -171,7 +175,7 @@ int main(int argc, char** argv) {
         while (!st->stopped && c.now_ns() < until);
       });
     } else {
-      c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
+      auto& acks = c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
         const auto r = barrier->ack(a.component, a.step);
         if (r == sim::LockstepBarrier::Ack::Unknown) c.count("lockstep.unknown_acks");
         if (r != sim::LockstepBarrier::Ack::Counted || !barrier->complete()) return;
@@ -179,9 +183,16 @@ int main(int argc, char** argv) {
         c.poll();
         advance();
       });
-      // Start, and resend the current Clock when an ack (or the Clock itself) was lost.
+      // Start once every participant is up (its ack writer is alive) and discovery has settled, so
+      // all of them receive step 0's data: a run must not depend on who was discovered first.
+      // Then resend the current Clock when an ack (or the Clock itself) was lost.
       c.every(std::min(0.05, p.ack_timeout / 2), [&, st, barrier, advance] {
-        if (!st->started) return advance();
+        if (!st->started) {
+          if (acks.liveliness().alive_count < static_cast<int32_t>(barrier->size())) return;
+          if (st->ready_wall == 0) st->ready_wall = c.now_ns();
+          if (c.now_ns() - st->ready_wall < static_cast<int64_t>(p.start_settle * 1e9)) return;
+          return advance();
+        }
         if (c.now_ns() - st->last_progress_wall < static_cast<int64_t>(p.ack_timeout * 1e9)) return;
         std::string missing;
         for (const auto& m : barrier->missing()) missing += (missing.empty() ? "" : ", ") + m;

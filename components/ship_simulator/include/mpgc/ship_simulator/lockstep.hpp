@@ -19,6 +19,7 @@ class LockstepBarrier {
   void begin(uint64_t step);
   Ack ack(const std::string& component, uint64_t step);
   bool complete() const { return acked_.size() == participants_.size(); }
+  std::size_t size() const { return participants_.size(); }
   uint64_t step() const { return step_; }
   std::vector<std::string> missing() const;
   bool empty() const { return participants_.empty(); }

@@ -1,0 +1,21 @@
+# Sails one scenario twice in lockstep and requires bit-identical time series: the same scenario
+# and seeds give the same run, whatever the machine's load. -D RUN=mpgc_run -D SCENARIO=file -D OUT=dir
+foreach(i 1 2)
+  execute_process(COMMAND ${RUN} ${SCENARIO} --out ${OUT}/run${i} --quiet RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "run ${i} of ${SCENARIO} failed (exit ${rc})")
+  endif()
+endforeach()
+get_filename_component(name ${SCENARIO} NAME_WE)
+file(GLOB dirs ${OUT}/run1/*)
+list(LENGTH dirs n)
+if(NOT n EQUAL 1)
+  message(FATAL_ERROR "expected one output directory in ${OUT}/run1, found ${n}")
+endif()
+get_filename_component(d ${dirs} NAME)
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}/run1/${d}/timeseries.csv ${OUT}/run2/${d}/timeseries.csv
+                RESULT_VARIABLE diff)
+if(NOT diff EQUAL 0)
+  message(FATAL_ERROR "the two runs of ${name} differ: ${OUT}/run1/${d}/timeseries.csv vs run2")
+endif()
+message(STATUS "two runs of ${name}: identical time series")
