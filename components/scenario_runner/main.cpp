@@ -294,7 +294,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     for (const auto& q : p.ring) poly.vertices.push_back({q.x, q.y});
     if (poly.vertices.size() >= 3) run.obstacles.polygons.push_back(poly);
   }
-  const auto params = sr::EvaluationParams::scaled_to(run.own.length);
+  const auto params = sr::evaluation_params(s, run.own.length);
   out.metrics = sr::evaluate(run, params, s.criteria);
   out.metrics.wall_s = wall;
   sr::ReportOptions ro;
@@ -321,35 +321,39 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   std::string suite;
   Options o;
-  app.add_option("scenarios", files, "scenario files (scenarios/*.yaml)");
-  app.add_option("--suite", suite, "a folder of scenarios/ to run: paper, dnv, all");
+  app.add_option("scenarios", files, "scenario files (scenarios/*.yaml, or DNV traffic-generator situations *.json)");
+  app.add_option("--suite", suite, "a folder of scenarios/ to run (paper, chart), dnv (the 55 DNV situations), all");
   app.add_option("--out", o.out, "output folder (one sub-folder per scenario)");
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--quiet", o.quiet, "no progress lines");
   CLI11_PARSE(app, argc, argv);
 
-  const fs::path root = fs::canonical("/proc/self/exe").parent_path().parent_path();  // build/
   const char* src = std::getenv("MPGC_SOURCE_DIR");
   const fs::path scen_dir = fs::path(src != nullptr ? src : ".") / "scenarios";
+  const char* shared = std::getenv("MPGC_SHARED_DATA");
+  const fs::path data_dir = shared != nullptr ? fs::path(shared) : scen_dir.parent_path() / ".." / "shared" / "data";
   if (!suite.empty()) {
-    std::vector<fs::path> dirs;
-    if (suite == "all") dirs = {scen_dir / "paper", scen_dir / "dnv"};
-    else dirs = {scen_dir / suite};
-    for (const auto& d : dirs) {
+    // A suite is a folder of scenario files: scenarios/<suite>/*.yaml, or for dnv the 55 generated
+    // DNV situations (*.json, converted on loading); all = paper, chart and dnv.
+    std::vector<std::pair<fs::path, std::string>> dirs;
+    const std::pair<fs::path, std::string> dnv{data_dir / "encounters" / "dnv" / "baseline_situations_generated", ".json"};
+    if (suite == "all") dirs = {{scen_dir / "paper", ".yaml"}, {scen_dir / "chart", ".yaml"}, dnv};
+    else if (suite == "dnv") dirs = {dnv};
+    else dirs = {{scen_dir / suite, ".yaml"}};
+    for (const auto& [d, ext] : dirs) {
       if (!fs::is_directory(d)) {
         std::cerr << "mpgc_run: no suite folder " << d << "\n";
         return 2;
       }
       std::vector<std::string> found;
       for (const auto& e : fs::directory_iterator(d))
-        if (e.path().extension() == ".yaml") found.push_back(e.path().string());
+        if (e.path().extension() == ext) found.push_back(e.path().string());
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     }
   }
   if (files.empty()) files.push_back((scen_dir / "paper" / "s1_colreg.yaml").string());
-  (void)root;
 
   std::vector<sr::Scenario> scenarios;
   for (const auto& f : files) {
