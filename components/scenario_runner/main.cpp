@@ -49,16 +49,33 @@ struct Options {
   bool quiet = false;
 };
 
-// A DDS domain no other run on this machine holds (201..230; tests use 1..200).
-int free_domain() {
-  for (int id = 201; id <= 230; ++id) {
-    const std::string path = "/tmp/mpgc-run-domain-" + std::to_string(id) + ".lock";
-    const int fd = open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0666);
-    if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0) return id;  // held until exit
-    if (fd >= 0) close(fd);
+// A DDS domain no other run on this machine holds (201..230; tests use 1..200), locked until the
+// lease is destroyed. Successive runs of a suite take successive ids, so that a run never starts
+// on the domain the previous one has just left.
+class DomainLease {
+ public:
+  DomainLease() {
+    static int next = 0;
+    for (int k = 0; k < 30; ++k) {
+      const int id = 201 + (next + k) % 30;
+      const std::string path = "/tmp/mpgc-run-domain-" + std::to_string(id) + ".lock";
+      const int fd = open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0666);
+      if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0) {
+        fd_ = fd, id_ = id, next = (next + k + 1) % 30;
+        return;
+      }
+      if (fd >= 0) close(fd);
+    }
+    throw std::runtime_error("no free DDS domain in 201..230 (too many runs at once)");
   }
-  throw std::runtime_error("no free DDS domain in 201..230 (too many runs at once)");
-}
+  ~DomainLease() { close(fd_); }  // releases the lock
+  DomainLease(const DomainLease&) = delete;
+  DomainLease& operator=(const DomainLease&) = delete;
+  int id() const { return id_; }
+
+ private:
+  int fd_ = -1, id_ = 0;
+};
 
 std::string yaml_str(const std::string& s) {
   YAML::Emitter e;
@@ -159,7 +176,8 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   const std::string launch_path = fs::absolute(dir / "launch.yaml").string();
   std::ofstream(launch_path) << launch_file(s, world_path, o);
 
-  const int domain = free_domain();
+  const DomainLease lease;  // released when this run is over (a suite used to run out after 30)
+  const int domain = lease.id();
   rt::RuntimeParams rp;
   rp.domain = domain;
   rp.clock = "sim";
