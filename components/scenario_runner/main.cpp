@@ -15,6 +15,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <set>
+#include <tuple>
 #include <thread>
 
 #include <CLI/CLI.hpp>
@@ -190,7 +193,10 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   run.goal = s.goal;
   msg::GroundTruth truth;
   bool have_truth = false;
-  msg::FixedObstacles fixed;
+  // Every fixed obstacle obstacle_manager published during the run: it sends the region around the
+  // own ship, so the union of all versions, not the last one, is what the ship sailed past.
+  std::map<std::tuple<uint32_t, std::size_t, double, double>, sr::Polygon> fixed_polygons;
+  std::set<std::pair<double, double>> fixed_points;
   std::vector<uint32_t> target_ids;
 
   auto& goal_w = c.publisher<msg::MissionGoal>(mpgc::topics::kGoal, dds::QosProfile::latched());
@@ -199,7 +205,17 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     have_truth = true;
   });
   c.subscribe<msg::FixedObstacles>(mpgc::topics::kFixedObstacles, dds::QosProfile::latched(),
-                                   [&](const msg::FixedObstacles& f) { fixed = f; });
+                                   [&](const msg::FixedObstacles& f) {
+                                     for (const auto& p : f.polygons) {
+                                       if (p.ring.size() < 3) continue;
+                                       const auto key = std::make_tuple(p.feature_id, p.ring.size(), p.ring[0].x, p.ring[0].y);
+                                       if (fixed_polygons.count(key)) continue;
+                                       sr::Polygon poly;
+                                       for (const auto& q : p.ring) poly.vertices.push_back({q.x, q.y});
+                                       fixed_polygons.emplace(key, std::move(poly));
+                                     }
+                                     for (const auto& q : f.points) fixed_points.insert({q.x, q.y});
+                                   });
   c.subscribe<msg::Path>(mpgc::topics::kPath, dds::QosProfile::latched(), [&](const msg::Path& p) {
     sr::PlanRecord r;
     r.t = c.clock().now_s();
@@ -307,11 +323,10 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     return out;
   }
 
-  for (const auto& p : fixed.polygons) {
-    sr::Polygon poly;
-    for (const auto& q : p.ring) poly.vertices.push_back({q.x, q.y});
-    if (poly.vertices.size() >= 3) run.obstacles.polygons.push_back(poly);
-  }
+  for (auto& [key, poly] : fixed_polygons) run.obstacles.polygons.push_back(std::move(poly));
+  std::vector<sr::Point2> points;
+  for (const auto& [x, y] : fixed_points) points.push_back({x, y});
+  sr::add_point_obstacles(run.obstacles, points, 0.5);  // point features; boundary points are dropped
   const auto params = sr::evaluation_params(s, run.own.length);
   out.metrics = sr::evaluate(run, params, s.criteria);
   out.metrics.wall_s = wall;
