@@ -15,6 +15,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <set>
+#include <tuple>
 #include <thread>
 
 #include <CLI/CLI.hpp>
@@ -49,16 +52,33 @@ struct Options {
   bool quiet = false;
 };
 
-// A DDS domain no other run on this machine holds (201..230; tests use 1..200).
-int free_domain() {
-  for (int id = 201; id <= 230; ++id) {
-    const std::string path = "/tmp/mpgc-run-domain-" + std::to_string(id) + ".lock";
-    const int fd = open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0666);
-    if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0) return id;  // held until exit
-    if (fd >= 0) close(fd);
+// A DDS domain no other run on this machine holds (201..230; tests use 1..200), locked until the
+// lease is destroyed. Successive runs of a suite take successive ids, so that a run never starts
+// on the domain the previous one has just left.
+class DomainLease {
+ public:
+  DomainLease() {
+    static int next = 0;
+    for (int k = 0; k < 30; ++k) {
+      const int id = 201 + (next + k) % 30;
+      const std::string path = "/tmp/mpgc-run-domain-" + std::to_string(id) + ".lock";
+      const int fd = open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0666);
+      if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0) {
+        fd_ = fd, id_ = id, next = (next + k + 1) % 30;
+        return;
+      }
+      if (fd >= 0) close(fd);
+    }
+    throw std::runtime_error("no free DDS domain in 201..230 (too many runs at once)");
   }
-  throw std::runtime_error("no free DDS domain in 201..230 (too many runs at once)");
-}
+  ~DomainLease() { close(fd_); }  // releases the lock
+  DomainLease(const DomainLease&) = delete;
+  DomainLease& operator=(const DomainLease&) = delete;
+  int id() const { return id_; }
+
+ private:
+  int fd_ = -1, id_ = 0;
+};
 
 std::string yaml_str(const std::string& s) {
   YAML::Emitter e;
@@ -159,7 +179,8 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   const std::string launch_path = fs::absolute(dir / "launch.yaml").string();
   std::ofstream(launch_path) << launch_file(s, world_path, o);
 
-  const int domain = free_domain();
+  const DomainLease lease;  // released when this run is over (a suite used to run out after 30)
+  const int domain = lease.id();
   rt::RuntimeParams rp;
   rp.domain = domain;
   rp.clock = "sim";
@@ -172,7 +193,10 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   run.goal = s.goal;
   msg::GroundTruth truth;
   bool have_truth = false;
-  msg::FixedObstacles fixed;
+  // Every fixed obstacle obstacle_manager published during the run: it sends the region around the
+  // own ship, so the union of all versions, not the last one, is what the ship sailed past.
+  std::map<std::tuple<uint32_t, std::size_t, double, double>, sr::Polygon> fixed_polygons;
+  std::set<std::pair<double, double>> fixed_points;
   std::vector<uint32_t> target_ids;
 
   auto& goal_w = c.publisher<msg::MissionGoal>(mpgc::topics::kGoal, dds::QosProfile::latched());
@@ -181,7 +205,17 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     have_truth = true;
   });
   c.subscribe<msg::FixedObstacles>(mpgc::topics::kFixedObstacles, dds::QosProfile::latched(),
-                                   [&](const msg::FixedObstacles& f) { fixed = f; });
+                                   [&](const msg::FixedObstacles& f) {
+                                     for (const auto& p : f.polygons) {
+                                       if (p.ring.size() < 3) continue;
+                                       const auto key = std::make_tuple(p.feature_id, p.ring.size(), p.ring[0].x, p.ring[0].y);
+                                       if (fixed_polygons.count(key)) continue;
+                                       sr::Polygon poly;
+                                       for (const auto& q : p.ring) poly.vertices.push_back({q.x, q.y});
+                                       fixed_polygons.emplace(key, std::move(poly));
+                                     }
+                                     for (const auto& q : f.points) fixed_points.insert({q.x, q.y});
+                                   });
   c.subscribe<msg::Path>(mpgc::topics::kPath, dds::QosProfile::latched(), [&](const msg::Path& p) {
     sr::PlanRecord r;
     r.t = c.clock().now_s();
@@ -289,12 +323,11 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     return out;
   }
 
-  for (const auto& p : fixed.polygons) {
-    sr::Polygon poly;
-    for (const auto& q : p.ring) poly.vertices.push_back({q.x, q.y});
-    if (poly.vertices.size() >= 3) run.obstacles.polygons.push_back(poly);
-  }
-  const auto params = sr::EvaluationParams::scaled_to(run.own.length);
+  for (auto& [key, poly] : fixed_polygons) run.obstacles.polygons.push_back(std::move(poly));
+  std::vector<sr::Point2> points;
+  for (const auto& [x, y] : fixed_points) points.push_back({x, y});
+  sr::add_point_obstacles(run.obstacles, points, 0.5);  // point features; boundary points are dropped
+  const auto params = sr::evaluation_params(s, run.own.length);
   out.metrics = sr::evaluate(run, params, s.criteria);
   out.metrics.wall_s = wall;
   sr::ReportOptions ro;
@@ -321,35 +354,39 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   std::string suite;
   Options o;
-  app.add_option("scenarios", files, "scenario files (scenarios/*.yaml)");
-  app.add_option("--suite", suite, "a folder of scenarios/ to run: paper, dnv, all");
+  app.add_option("scenarios", files, "scenario files (scenarios/*.yaml, or DNV traffic-generator situations *.json)");
+  app.add_option("--suite", suite, "a folder of scenarios/ to run (paper, chart), dnv (the 55 DNV situations), all");
   app.add_option("--out", o.out, "output folder (one sub-folder per scenario)");
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--quiet", o.quiet, "no progress lines");
   CLI11_PARSE(app, argc, argv);
 
-  const fs::path root = fs::canonical("/proc/self/exe").parent_path().parent_path();  // build/
   const char* src = std::getenv("MPGC_SOURCE_DIR");
   const fs::path scen_dir = fs::path(src != nullptr ? src : ".") / "scenarios";
+  const char* shared = std::getenv("MPGC_SHARED_DATA");
+  const fs::path data_dir = shared != nullptr ? fs::path(shared) : scen_dir.parent_path() / ".." / "shared" / "data";
   if (!suite.empty()) {
-    std::vector<fs::path> dirs;
-    if (suite == "all") dirs = {scen_dir / "paper", scen_dir / "dnv"};
-    else dirs = {scen_dir / suite};
-    for (const auto& d : dirs) {
+    // A suite is a folder of scenario files: scenarios/<suite>/*.yaml, or for dnv the 55 generated
+    // DNV situations (*.json, converted on loading); all = paper, chart and dnv.
+    std::vector<std::pair<fs::path, std::string>> dirs;
+    const std::pair<fs::path, std::string> dnv{data_dir / "encounters" / "dnv" / "baseline_situations_generated", ".json"};
+    if (suite == "all") dirs = {{scen_dir / "paper", ".yaml"}, {scen_dir / "chart", ".yaml"}, dnv};
+    else if (suite == "dnv") dirs = {dnv};
+    else dirs = {{scen_dir / suite, ".yaml"}};
+    for (const auto& [d, ext] : dirs) {
       if (!fs::is_directory(d)) {
         std::cerr << "mpgc_run: no suite folder " << d << "\n";
         return 2;
       }
       std::vector<std::string> found;
       for (const auto& e : fs::directory_iterator(d))
-        if (e.path().extension() == ".yaml") found.push_back(e.path().string());
+        if (e.path().extension() == ext) found.push_back(e.path().string());
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     }
   }
   if (files.empty()) files.push_back((scen_dir / "paper" / "s1_colreg.yaml").string());
-  (void)root;
 
   std::vector<sr::Scenario> scenarios;
   for (const auto& f : files) {

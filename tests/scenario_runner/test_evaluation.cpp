@@ -46,6 +46,25 @@ TEST(Evaluation, PolygonDistanceIsExact) {
   EXPECT_THROW(sr::distance_to_polygon({0, 0}, sr::Polygon{{{0, 0}, {1, 1}}}), std::invalid_argument);
 }
 
+// obstacle_manager's point set mixes densified polygon boundaries with point features: only the
+// points off every polygon (outside, farther than the tolerance from its edges) become obstacles.
+TEST(Evaluation, PointFeaturesAreKeptBoundaryPointsDropped) {
+  sr::FixedObstacles obs;
+  obs.polygons.push_back({{{0, 0}, {0, 100}, {100, 100}, {100, 0}}});
+  const std::vector<sr::Point2> points{{0, 0},     {0, 20},  {50, 100.2},  // on the boundary (within 0.5 m)
+                                       {50, 50},                          // inside
+                                       {300, 300}, {50, 101}};            // point features
+  EXPECT_EQ(sr::add_point_obstacles(obs, points, 0.5), 2u);
+  ASSERT_EQ(obs.circles.size(), 2u);
+  EXPECT_DOUBLE_EQ(obs.circles[0].centre.x, 300.0);
+  EXPECT_DOUBLE_EQ(obs.circles[1].centre.y, 101.0);
+  EXPECT_DOUBLE_EQ(obs.circles[1].radius, 0.0);
+  EXPECT_DOUBLE_EQ(sr::distance_to_obstacles({300, 340}, obs), 40.0);
+  sr::FixedObstacles none;  // no polygons: every point is a feature
+  EXPECT_EQ(sr::add_point_obstacles(none, points, 0.5), points.size());
+  EXPECT_THROW(sr::add_point_obstacles(none, {{std::nan(""), 0}}, 0.5), std::invalid_argument);
+}
+
 TEST(Evaluation, MinDistanceAndSafetyViolationAreExact) {
   // dt = 7 s: no sample at the closest approach, which is found between samples anyway.
   for (double dt : {1.0, 7.0}) {

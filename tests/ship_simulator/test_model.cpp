@@ -204,6 +204,28 @@ TEST(NomotoModel, SteadyYawRateIsKDelta) {
   EXPECT_THROW(sim::load_nomoto_csv(data_dir() + "/nomoto_kt.csv", "Submarine", 7.0), std::runtime_error);
 }
 
+// A Nomoto ship of another length keeps K' and T' (K = K'U/L, T = T'L/U): at the same speed a
+// 122 m ship turns 320/122 times faster than the KVLCC2-sized one; the beam scales with the length
+// unless given; the mmg model has no length option.
+TEST(NomotoModel, OtherLengthKeepsNondimensionalGains) {
+  sim::ModelChoice c{"nomoto", data_dir(), "Mariner"};
+  c.length = 122.0;
+  auto small = sim::make_model(c);
+  auto big = model("nomoto");
+  EXPECT_DOUBLE_EQ(small->length(), 122.0);
+  EXPECT_NEAR(small->beam(), big->beam() * 122.0 / 320.0, 1e-9);
+  c.beam = 20.0;
+  EXPECT_DOUBLE_EQ(sim::make_model(c)->beam(), 20.0);
+  for (auto* m : {small.get(), big.get()}) {
+    const sim::ShipState s0 = straight(*m, 5.0);
+    m->set_state(s0);
+    for (int i = 0; i < 30000; ++i) m->step(0.1, {geo::deg2rad(5.0), s0.rpm});
+  }
+  EXPECT_NEAR(small->state().r / big->state().r, 320.0 / 122.0, 1e-3);  // (the speeds differ a little)
+  c.kind = "mmg";
+  EXPECT_THROW(sim::make_model(c), std::invalid_argument);
+}
+
 TEST(ShipModel, StartsFromRestAndStops) {
   for (const char* kind : {"mmg", "nomoto"}) {
     auto m = model(kind);

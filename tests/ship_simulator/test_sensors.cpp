@@ -251,6 +251,11 @@ TEST(WorldConfig, ParsesAndNamesBadKeys) {
   expect_error("origin: {lat_deg: 1, lon_deg: 2}\ntargets: [{mmsi: 25, x_m: 0, y_m: 0}]\n", "targets[0].mmsi");
   expect_error("origin: {lat_deg: 1, lon_deg: 2}\nsensors: {radar: {detection_probability: 2}}\n",
                "sensors.radar.detection_probability");
+  expect_error("origin: {lat_deg: 1, lon_deg: 2}\nown_ship: {model: mmg, length_m: 122}\n", "own_ship.length_m");
+  expect_error("origin: {lat_deg: 1, lon_deg: 2}\nown_ship: {model: nomoto, length_m: 5000}\n", "own_ship.length_m");
+  const auto small = sim::WorldConfig::from_yaml("origin: {lat_deg: 1, lon_deg: 2}\nown_ship: {model: nomoto, length_m: 122, beam_m: 20}\n");
+  EXPECT_EQ(small.model.length, 122.0);
+  EXPECT_EQ(small.model.beam, 20.0);
   expect_error("origin: [1, 2\n", "malformed");
   EXPECT_THROW(sim::WorldConfig::from_file("/nonexistent/world.yaml"), std::runtime_error);
 }

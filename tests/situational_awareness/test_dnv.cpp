@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mpgc/colreg/colreg.hpp"
+#include "mpgc/geo/angles.hpp"
 #include "mpgc/situational_awareness/dnv_situation.hpp"
 #include "mpgc/testing.hpp"
 
@@ -164,6 +165,35 @@ TEST(Dnv, MalformedFilesNameTheProblem) {
       EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
     }
+  }
+}
+
+// The whole route and the static data of a generated file; a bad field deep in a route is named.
+TEST(Dnv, RoutesAndDimensionsAreRead) {
+  const auto s = sa::read_dnv_situation(situation_path("01"));
+  ASSERT_EQ(s.own.waypoints.size(), 2u);
+  EXPECT_NEAR(mpgc::geo::rad2deg(s.own.waypoints[1].lat), 58.8465724, 1e-9);
+  EXPECT_NEAR(s.own.waypoints[1].sog, 10.0 * mpgc::geo::kKnot, 1e-12);
+  EXPECT_EQ(s.own.mmsi, 257847600u);
+  EXPECT_EQ(s.own.length, 122.0);
+  EXPECT_EQ(s.own.width, 20.0);
+  ASSERT_EQ(s.targets.size(), 1u);
+  ASSERT_EQ(s.targets[0].waypoints.size(), 2u);
+  EXPECT_NEAR(mpgc::geo::rad2deg(s.targets[0].waypoints[1].lon), 10.48458595, 1e-9);
+  EXPECT_EQ(s.targets[0].width, 10.0);
+  EXPECT_EQ(s.targets[0].mmsi, 0u);
+
+  const std::string f = ::testing::TempDir() + "sa_badroute.json";
+  std::ofstream(f) << R"({"ownShip": {"initial": {"heading": 0}, "waypoints": [{"position": {"lat": 58.0, "lon": 10.0}, "leg": {"sog": 10}}]},
+      "targetShips": [{"initial": {"heading": 0}, "waypoints": [{"position": {"lat": 58.1, "lon": 10.0}, "leg": {"sog": 8}},
+                                                            {"position": {"lat": "north", "lon": 10.0}}]}]})";
+  try {
+    sa::read_dnv_situation(f);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(f + ": targetShips[0].waypoints[1].position.lat: 'north' is not a number"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -390,6 +390,21 @@ double distance_to_obstacles(const Point2& p, const FixedObstacles& obs) {
   return ObstacleIndex(obs).point_distance(p);
 }
 
+std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<Point2>& points, double tolerance) {
+  std::vector<Point2> keep;
+  {
+    FixedObstacles polygons;
+    polygons.polygons = obs.polygons;
+    const ObstacleIndex index(polygons);
+    for (const Point2& p : points) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw std::invalid_argument("add_point_obstacles: point is not finite");
+      if (!index.inside_any(p) && index.edge_distance(p, p) > tolerance) keep.push_back(p);
+    }
+  }
+  for (const Point2& p : keep) obs.circles.push_back({p, 0.0});
+  return keep.size();
+}
+
 double distance_to_path(const Point2& p, const std::vector<PlannedWaypoint>& wps) {
   if (wps.empty()) throw std::invalid_argument("distance_to_path: no waypoints");
   double best = dist(p, {wps[0].x, wps[0].y});

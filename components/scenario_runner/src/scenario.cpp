@@ -1,6 +1,7 @@
 #include "mpgc/scenario_runner/scenario.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -130,7 +131,7 @@ Scenario parse_scenario(const std::string& yaml, const std::string& origin) {
   }
   only_keys(origin, root, "scenario",
             {"name", "description", "lpp_m", "plot_units", "world", "goal", "safety_distance_m",
-             "safety_distance_lpp", "colreg", "obstacles", "time_limit_s", "criteria", "params"});
+             "safety_distance_lpp", "colreg", "obstacles", "time_limit_s", "evaluation", "criteria", "params"});
   Scenario s;
   s.path = origin;
   s.name = text(origin, root, "name", "");
@@ -189,6 +190,13 @@ Scenario parse_scenario(const std::string& yaml, const std::string& origin) {
     }
   }
 
+  if (const YAML::Node ev = root["evaluation"]) {
+    only_keys(origin, ev, "evaluation", {"min_cpa_m", "min_cpa_lpp"});
+    if (ev["min_cpa_m"] && ev["min_cpa_lpp"]) fail(origin, ev, "evaluation", "give min_cpa_m or min_cpa_lpp, not both");
+    if (ev["min_cpa_lpp"]) s.evaluation_min_cpa = s.lpp * number(origin, ev, "min_cpa_lpp", 0, 0.01, 1000.0);
+    if (ev["min_cpa_m"]) s.evaluation_min_cpa = number(origin, ev, "min_cpa_m", 0, 1.0, 1e5);
+  }
+
   if (const YAML::Node c = root["criteria"]) {
     only_keys(origin, c, "criteria", {"goal", "safety_tolerance", "max_safety_violation_s", "colreg_compliant", "targets"});
     s.criteria.goal_required = boolean(origin, c, "goal", true);
@@ -227,8 +235,14 @@ Scenario parse_scenario(const std::string& yaml, const std::string& origin) {
   return s;
 }
 
+EvaluationParams evaluation_params(const Scenario& s, double own_length) {
+  // scaled_to multiplies the 10 m craft's distances (r_min_cpa = 100 m) by own_length / reference.
+  if (s.evaluation_min_cpa > 0.0) return EvaluationParams::scaled_to(own_length, 100.0 * own_length / s.evaluation_min_cpa);
+  return EvaluationParams::scaled_to(own_length);
+}
+
 Scenario load_scenario(const std::string& path) {
-  YAML::Node check;
+  if (std::filesystem::path(path).extension() == ".json") return dnv_scenario(path);
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read scenario '" + path + "'");
   std::stringstream ss;

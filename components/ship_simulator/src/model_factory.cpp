@@ -1,5 +1,6 @@
 #include "mpgc/ship_simulator/model_factory.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -16,15 +17,21 @@ std::string default_ship_data_dir() {
 std::unique_ptr<ShipModel> make_model(const ModelChoice& choice) {
   const std::string dir = choice.data_dir.empty() ? default_ship_data_dir() : choice.data_dir;
   const MmgParams mp = load_kvlcc2_csv(dir + "/kvlcc2_mmg_parameters.csv");
-  if (choice.kind == "mmg") return std::make_unique<MmgModel>(mp);
+  if (choice.kind == "mmg") {
+    if (choice.length > 0.0 || choice.beam > 0.0)
+      throw std::invalid_argument("the mmg model is the KVLCC2 at full scale: length and beam are for nomoto only");
+    return std::make_unique<MmgModel>(mp);
+  }
   if (choice.kind == "nomoto") {
     NomotoParams np = load_nomoto_csv(dir + "/nomoto_kt.csv", choice.nomoto_ship, mp.service_speed);
-    np.L = mp.L;
-    np.B = mp.B;
+    if (choice.length < 0.0 || choice.beam < 0.0 || !std::isfinite(choice.length) || !std::isfinite(choice.beam))
+      throw std::invalid_argument("nomoto length and beam must be finite and >= 0");
+    np.L = choice.length > 0.0 ? choice.length : mp.L;
+    np.B = choice.beam > 0.0 ? choice.beam : mp.B * np.L / mp.L;
     np.service_speed = mp.service_speed;
     np.service_rpm = MmgModel(mp).self_propulsion_rpm(mp.service_speed);
     // Surge lag (m + m_x) / (dR/du) of the KVLCC2 at 15.5 kn, rounded.
-    np.speed_time_constant = 300.0;
+    np.speed_time_constant = 300.0 * np.L / mp.L;
     np.max_rudder = mp.max_rudder;
     np.rudder_rate = mp.rudder_rate;
     np.rudder_servo_t = mp.rudder_servo_t;

@@ -120,12 +120,16 @@ WorldConfig WorldConfig::from_yaml(const std::string& text, const std::string& o
   c.seed = top.seed("seed", 1);
 
   const Map own = top.sub("own_ship");
-  own.allow({"model", "nomoto_ship", "data_dir", "x_m", "y_m", "lat_deg", "lon_deg", "heading_deg", "speed_kn", "rpm",
-             "mmsi"});
+  own.allow({"model", "nomoto_ship", "data_dir", "length_m", "beam_m", "x_m", "y_m", "lat_deg", "lon_deg", "heading_deg",
+             "speed_kn", "rpm", "mmsi"});
   c.model.kind = own.str("model", "mmg");
   if (c.model.kind != "mmg" && c.model.kind != "nomoto") own.fail("own_ship.model", "must be mmg or nomoto");
   c.model.nomoto_ship = own.str("nomoto_ship", "Mariner");
   c.model.data_dir = own.str("data_dir", "");
+  if (c.model.kind != "nomoto" && (own.has("length_m") || own.has("beam_m")))
+    own.fail("own_ship.length_m", "is for model nomoto only (mmg is the KVLCC2 at full scale)");
+  c.model.length = own.num("length_m", 0.0, 10.0, 500.0);
+  c.model.beam = own.num("beam_m", 0.0, 1.0, 100.0);
   const auto p = position(own, frame, false);
   c.own_start.x = p.x;
   c.own_start.y = p.y;

@@ -291,6 +291,11 @@ DistanceSeries distance_series(const RunRecord& run);
 double distance_to_polygon(const Point2& p, const Polygon& poly);
 // Distance from p to the fixed obstacles (circles: to the disc). +inf when there are none.
 double distance_to_obstacles(const Point2& p, const FixedObstacles& obs);
+// Appends the point obstacles among `points` to `obs` as zero-radius circles: those outside every
+// polygon of `obs` and farther than `tolerance` [m] from every polygon edge. obstacle_manager
+// publishes the densified polygon boundaries and the chart's point features (e.g. OBSTRN points)
+// as one point set; this keeps the point features. Returns how many were added.
+std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<Point2>& points, double tolerance);
 // Distance from p to the polyline through the waypoints (>= 1 waypoint).
 double distance_to_path(const Point2& p, const std::vector<PlannedWaypoint>& wps);
 // Index of the plan active at each sample (last kOk/kRelaxed plan with plan.t <= t[i]); -1: none.

@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "mpgc/scenario_runner/evaluation.hpp"
+#include "mpgc/situational_awareness/dnv_situation.hpp"
 
 namespace mpgc::scenario_runner {
 
@@ -31,14 +32,44 @@ struct Scenario {
   std::string chart_shapes;      // obstacle_manager chart.shapes (NED metres)
   std::vector<std::string> chart_files;
   double time_limit = 0.0;       // [s] simulated
+  // The evaluation's minimum acceptable CPA r_min_cpa (evaluation.min_cpa_m): every distance of the
+  // evaluation is scaled with it (EvaluationParams::scaled_to). 0: the default, 10 own-ship lengths.
+  double evaluation_min_cpa = 0.0;  // [m]
   PassCriteria criteria;
   // Per-component parameter overrides: component -> (name -> value).
   std::map<std::string, std::map<std::string, std::string>> params;
 };
 
-// Reads a scenario YAML file. Throws std::runtime_error "<file>:<line>: <key>: <problem>".
+// The evaluation's parameters for an own ship of `own_length` [m]: scaled to the length, or so
+// that r_min_cpa = evaluation_min_cpa when the scenario gives one.
+EvaluationParams evaluation_params(const Scenario& s, double own_length);
+
+// Reads a scenario file: YAML (format above), or a DNV ship-traffic-generator situation (*.json,
+// converted by dnv_scenario). Throws std::runtime_error "<file>:<line>: <key>: <problem>" (YAML)
+// or "<file>: <field>: <problem>" (JSON).
 Scenario load_scenario(const std::string& path);
 Scenario parse_scenario(const std::string& yaml, const std::string& origin);
+
+// DNV ship-traffic-generator situations (../shared/data/encounters/dnv/, scenarios/README.md
+// "DNV situations"): the generated JSON becomes a scenario. The own ship starts at its first
+// waypoint (the origin) on its initial heading at the first leg's SOG and must reach its last
+// waypoint; targets follow their waypoints; the parameters the file does not give are the
+// documented choices below. `desired` is the desiredEncounterType of each target (from the input
+// file; empty entries or a short list: no requirement for those targets).
+struct DnvChoices {
+  double safety_distance = 926.0;        // [m] 0.5 NM, but at most min_range_share x the nearest target's start range
+  double min_range_share = 0.8;          // [-]
+  double colreg_distance = 5556.0;       // [m] d_COLREG, 3 NM
+  double time_factor = 1.5;              // [-] time limit = route length / SOG x this, rounded up to 100 s
+  double arrival_lengths = 2.0;          // [-] arrival radius in own-ship lengths
+  double lookahead_lengths = 2.5;        // [-] LOS lookahead and circle of acceptance in own-ship lengths
+  double safety_tolerance = 0.05;        // [-] pass: min distance >= d_safety x (1 - this)
+  double max_safety_violation_s = 60.0;  // [s] pass: time allowed below d_safety
+};
+Scenario dnv_scenario(const std::string& path, const DnvChoices& choices = {});
+// The conversion alone (no file access except the Nomoto table for the heading-controller gains).
+Scenario dnv_scenario(const sa::DnvSituation& situation, const std::vector<std::string>& desired,
+                      const DnvChoices& choices = {});
 
 // Replaces every `<key>_lpp: v` by `<key>_m: v * lpp`, recursively (maps and sequences).
 YAML::Node lpp_to_metres(const YAML::Node& n, double lpp);

@@ -3,6 +3,7 @@
 // knots and heading in degrees, plus the desired encounter types of the matching input file.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -10,13 +11,23 @@
 
 namespace mpgc::sa {
 
+// One route point of a generated situation: waypoints[i].position and waypoints[i].leg.sog.
+struct DnvWaypoint {
+  double lat = 0.0;  // [rad]
+  double lon = 0.0;  // [rad]
+  double sog = 0.0;  // [m/s] leg.sog (the leg from this waypoint on); NaN if the waypoint has no leg
+};
+
 struct DnvShip {
   std::string name;
+  std::uint32_t mmsi = 0;  // [-] static.mmsi; 0 if absent
   double lat = 0.0;      // [rad]
   double lon = 0.0;      // [rad]
   double heading = 0.0;  // [rad] initial.heading; the generator sails every ship on its heading
   double sog = 0.0;      // [m/s]
-  double length = 0.0;   // [m] NaN if absent
+  double length = 0.0;   // [m] static.dimensions.length; NaN if absent
+  double width = 0.0;    // [m] static.dimensions.width; NaN if absent
+  std::vector<DnvWaypoint> waypoints;  // the route (generated files); empty in input files
 };
 
 struct DnvSituation {
@@ -29,7 +40,9 @@ struct DnvSituation {
   std::vector<std::string> desired;
 };
 
-// Reads a generated situation. Throws std::runtime_error naming the file and the bad key.
+// Reads a generated situation. Throws std::runtime_error "<file>: <field>: <problem>" naming the
+// file and the bad field (e.g. "targetShips[1].waypoints[0].position.lat") or, for a file that is
+// not JSON at all, the parser's line and column.
 DnvSituation read_dnv_situation(const std::string& path);
 // desiredEncounterType of every encounter of an input file (baseline_situations_input/*.json), or
 // of the file itself when it carries "encounters". Throws std::runtime_error on malformed files.
