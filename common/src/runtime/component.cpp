@@ -148,10 +148,7 @@ void Component::on_clock(const msg::Clock& c) {
   }
   // Everything that arrived before this Clock is in the readers now; hand over what belongs here.
   for (auto& s : subs_) s->take(*this);
-  Gate gate;
-  gate.mode = Gate::Mode::Tick;
-  gate.tick_ns = c.time_ns;
-  gate.clock_publisher = &rp_.clock_publisher;
+  const Gate gate = Gate::tick(c.time_ns, rp_.clock_publisher);
   for (auto& s : subs_) s->deliver(gate);
   fire_due_timers();
   if (c.lockstep && rp_.lockstep_ack) ack_writer_->write(msg::StepAck{name_, c.step});
@@ -210,11 +207,10 @@ int Component::spin() {
       return 1;
     }
     // Wall clock: deliver at once. Simulated time: queue, and deliver at the Clock tick.
-    Gate arrival;
-    arrival.mode = Gate::Mode::Arrival;
+    const Gate gate = sim_clock_ == nullptr ? Gate{} : Gate::arrival();
     for (auto& s : subs_) {
       s->take(*this);
-      s->deliver(sim_clock_ == nullptr ? Gate{} : arrival);
+      s->deliver(gate);
     }
     if (clock_sub_) clock_sub_->process(*this);
     for (auto& l : liveliness_) {

@@ -128,6 +128,8 @@ class Component {
     enum class Mode { All, Tick, Arrival } mode = Mode::All;
     int64_t tick_ns = 0;  // [ns] time of the tick
     const std::string* clock_publisher = nullptr;
+    static Gate tick(int64_t t_ns, const std::string& publisher) { return {Mode::Tick, t_ns, &publisher}; }
+    static Gate arrival() { return {Mode::Arrival, 0, nullptr}; }
     bool passes() const { return mode != Mode::Arrival; }  // a sample without a header
     bool passes(const msg::Header& h) const {
       if (mode == Mode::All || h.stamp_ns >= kForeignStamp_ns) return true;
@@ -168,6 +170,7 @@ class Component {
       }
     }
     void deliver(const Gate& gate) override {
+      if (queued.empty()) return;  // the common case on every wake-up: no allocation
       std::vector<T> now, later;
       for (auto& v : queued) {
         bool pass;
