@@ -14,6 +14,7 @@
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/obstacle_manager/msg_convert.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
+#include "mpgc/opp/encounters.hpp"
 #include "mpgc/opp/planner.hpp"
 #include "mpgc/opp/replan.hpp"
 #include "mpgc/runtime/component.hpp"
@@ -35,6 +36,8 @@ struct NodeParams {
   double default_speed = 5;      // [m/s] when neither the goal nor the own state gives a speed
   double max_state_age = 5;      // [s] own state older than this is not planned from
   bool warm_start = true;        // seed the tree with the previous path of the same goal
+  bool pin_encounters = true;    // hold each leg to the obligation fixed at the encounter's start
+  double encounter_tcpa = 1800;  // [s] risk of collision within this TCPA pins an encounter
 };
 
 void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
@@ -72,6 +75,12 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("plan.default_speed", &p.default_speed, 5.0, "m/s", 0.1, 50.0, "planned speed when no other is known");
   ps.add("plan.max_state_age", &p.max_state_age, 5.0, "s", 0.1, 600.0, "older own states are not planned from");
   ps.add("plan.warm_start", &p.warm_start, true, "re-use the previous path of the same goal");
+  ps.add("plan.pin_encounters", &p.pin_encounters, true,
+         "fix each target's COLREG obligation when the risk of collision appears (encounters.hpp); false: per leg (§5)");
+  ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 1800.0, "s", 1.0, 86400.0,
+         "a CPA inside d_safety within this time pins the encounter");
+  ps.add("plan.port_tolerance", &q.colreg.port_tolerance, mpgc::geo::deg2rad(5.0), "rad", 0.0, 1.5,
+         "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
 }
 
 bool finite2(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
@@ -157,9 +166,10 @@ int main(int argc, char** argv) {
       uint32_t plan_id = 0;
       uint32_t warm_goal = 0;
       std::vector<opp::Vec2> last_path;
+      opp::EncounterMemory encounters;
       mpgc::rt::WallClock wall;  // planning time and budget are wall time, also on simulated time
     };
-    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}});
+    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}});
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
     auto* enc_out = &c->publisher<msg::EncounterList>(mpgc::topics::kPlanEncounters, mpgc::dds::QosProfile::latched());
@@ -226,6 +236,26 @@ int main(int argc, char** argv) {
       if (goal.safety_distance > 0) prm.safety_distance = goal.safety_distance;
       prm.colreg_distance = std::max(prm.colreg_distance, prm.safety_distance);
       prm.seed = static_cast<uint64_t>(p.seed) + st->plan_id;
+      const auto own_kin = mpgc::colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
+      if (pb.colreg && p.pin_encounters) {
+        opp::EncounterMemoryParams ep;
+        ep.cpa_risk = prm.safety_distance;
+        ep.tcpa_max = p.encounter_tcpa;
+        ep.release_range = prm.colreg_distance;
+        ep.theta_o = prm.colreg.theta_overtaking;
+        ep.theta_h = prm.colreg.theta_head_on;
+        try {
+          const std::size_t before = st->encounters.size();
+          st->encounters.update(ep, own_kin, pb.targets);
+          if (st->encounters.size() != before)
+            for (const auto& t : pb.targets)
+              if (t.pinned.obligation != opp::Obligation::kNone)
+                c->log().debug("target {}: {} pinned at course {:.1f} deg", t.id, opp::to_string(t.pinned.obligation),
+                               mpgc::geo::rad2deg(t.pinned.course0));
+        } catch (const std::exception& e) {
+          c->reject("encounters", e.what());
+        }
+      }
       opp::Hooks hooks;
       auto wall = &st->wall;
       hooks.elapsed = [wall] { return wall->now_s(); };
@@ -270,7 +300,7 @@ int main(int argc, char** argv) {
       cp.theta_o = prm.colreg.theta_overtaking;
       cp.theta_h = prm.colreg.theta_head_on;
       cp.d_colreg = prm.colreg_distance;
-      const auto ok = mpgc::colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
+      const auto& ok = own_kin;
       for (const auto& o : st->moving ? st->moving->obstacles : std::vector<msg::MovingObstacle>{}) {
         const opp::Target* t = nullptr;
         for (const auto& x : targets)

@@ -60,3 +60,67 @@ TEST(Colreg, StoppedTargetHasNoRoute) {
   EXPECT_TRUE(c.compliant);
   EXPECT_EQ(c.situation, opp::ColregSituation::kNone);
 }
+
+// --- obligations pinned for the whole encounter (colreg_check_pinned) ------------------------------
+
+namespace {
+opp::Vec2 heading(double deg, double speed = 6.0) {
+  const double r = deg * 3.14159265358979323846 / 180.0;
+  return {speed * std::cos(r), speed * std::sin(r)};
+}
+opp::PinnedEncounter pinned(opp::Obligation o, double course0_deg = 0.0, int side = 0) {
+  return {o, course0_deg * 3.14159265358979323846 / 180.0, side};
+}
+}  // namespace
+
+TEST(ColregPinned, HeadOnStaysHeadOnAfterAPortTurn) {
+  // The target ahead on a reciprocal course, slightly to starboard: non-compliant head-on for the
+  // per-leg model. After a 30 deg turn to port it is no head-on for that model (beyond theta_h)
+  // and the routes no longer meet ahead: "compliant", to be passed starboard to starboard.
+  const opp::Vec2 v = heading(-30), w{-6, 0}, y{4000, 300};
+  EXPECT_FALSE(opp::colreg_check(kOwn, kNorth, y, w, kP).compliant);
+  EXPECT_TRUE(opp::colreg_check(kOwn, v, y, w, kP).compliant);
+  const auto c = opp::colreg_check_pinned(kOwn, v, y, w, pinned(opp::Obligation::kHeadOn), kP);
+  EXPECT_EQ(c.situation, opp::ColregSituation::kHeadOn);
+  EXPECT_FALSE(c.compliant);
+  // To starboard with the target on the port side: compliant; the target on starboard: not.
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(30), {4000, -100}, w, pinned(opp::Obligation::kHeadOn), kP).compliant);
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(30), {4000, 3000}, w, pinned(opp::Obligation::kHeadOn), kP).compliant);
+  // Within the port tolerance (5 deg) of the pinned course: still compliant.
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-4), {4000, -800}, w, pinned(opp::Obligation::kHeadOn), kP).compliant);
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-6), {4000, -800}, w, pinned(opp::Obligation::kHeadOn), kP).compliant);
+}
+
+TEST(ColregPinned, OpeningLegIsClear) {
+  // The head-on target has passed down the port side: any leg on which the range opens is clear,
+  // also one back to port.
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-40), {-1500, -800}, {-6, 0}, pinned(opp::Obligation::kHeadOn), kP)
+                  .compliant);
+}
+
+TEST(ColregPinned, GiveWayMayNotCrossAheadNorTurnToPort) {
+  // Target from starboard heading west, meeting the own route at N = 1000; own first at x_c.
+  const opp::Vec2 w{0, -6}, y{1000, 1500};
+  const auto gw = pinned(opp::Obligation::kGiveWay, 0.0, -1);
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, kNorth, y, w, gw, kP).compliant);
+  // A port turn: the per-leg model sees the target on its starboard quarter, routes meeting
+  // ahead of both with own first... pinned, any port alteration is refused.
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-45), y, w, gw, kP).compliant);
+  // Starboard, towards the target's stern (routes do not meet ahead of both): compliant.
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(60), y, w, gw, kP).compliant);
+  // Once across the target's track astern of it, the obligation is met: even a port leg is clear.
+  const opp::Vec2 own_across{1100, 1600};  // north of the target's track (it was south), behind it (east)
+  EXPECT_TRUE(opp::colreg_check_pinned(own_across, heading(-60), {1000, 500}, w, gw, kP).compliant);
+}
+
+TEST(ColregPinned, OvertakingMustNotCrossAhead) {
+  const opp::Vec2 v{6 * std::cos(0.17), 6 * std::sin(0.17)};
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, v, {300, 200}, {3, 0}, pinned(opp::Obligation::kOvertaking), kP).compliant);
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, kNorth, {300, 200}, {3, 0}, pinned(opp::Obligation::kOvertaking), kP).compliant);
+}
+
+TEST(ColregPinned, NoneIsThePerLegModel) {
+  for (const opp::Vec2 y : {opp::Vec2{2000, 50}, opp::Vec2{2000, -50}, opp::Vec2{1000, 1500}})
+    EXPECT_EQ(opp::colreg_check_pinned(kOwn, kNorth, y, {-6, 0}, {}, kP).compliant,
+              opp::colreg_check(kOwn, kNorth, y, {-6, 0}, kP).compliant);
+}

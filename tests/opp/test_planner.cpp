@@ -213,6 +213,46 @@ TEST(PlannerColreg, HeadOnPassesPortToPort) {
   }
 }
 
+// Passing side of a target at the closest approach: +1 the target on the own starboard side.
+int passing_side(const opp::Result& r, const opp::Target& t) {
+  double tbest = 0, dbest = INFINITY;
+  for (double tt = 0; tt < r.path.back().t; tt += 1.0) {
+    const double d = opp::norm(at(r, tt) - (t.p + tt * t.v));
+    if (d < dbest) dbest = d, tbest = tt;
+  }
+  const opp::Vec2 x = at(r, tbest), y = t.p + tbest * t.v;
+  const opp::Vec2 dir = at(r, tbest + 1.0) - x;
+  return opp::cross(dir, y - x) > 0 ? 1 : -1;
+}
+
+TEST(PlannerColreg, PinnedHeadOnMetOutsideTheColregZonePassesPortToPort) {
+  // A head-on target 12 km ahead, d_COLREG 4 km, the goal to port. Per leg (§5) a turn to
+  // port made before the target is inside d_COLREG leaves a "crossing" that may be passed
+  // starboard to starboard, and that is the cheaper way to this goal. With the head-on pinned
+  // (EncounterMemory) every leg inside the zone must keep the target to port and may not point
+  // to port of the course at the start.
+  const opp::Target t{1, {12000, 100}, {-6, 0}, {}};
+  auto s = canonical(t, 20000);
+  s.problem.goal.p = {20000, -2500};
+  s.problem.bounds = {-2000, -8000, 21000, 5000};
+  s.params.colreg_distance = 4000;
+  int starboard_unpinned = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    const auto free = run(s, seed, 4000);
+    ASSERT_EQ(free.status, opp::Status::kOk) << free.reason;
+    starboard_unpinned += passing_side(free, t) > 0;
+    auto pinned = s;
+    pinned.problem.targets[0].pinned = {opp::Obligation::kHeadOn, 0.0, 0};
+    const auto r = run(pinned, seed, 4000);
+    ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+    expect_valid(pinned.problem, pinned.params, r);
+    EXPECT_LT(passing_side(r, t), 0) << "seed " << seed;
+    EXPECT_EQ(opp::check_path(pinned.problem, pinned.params, points(r), true), "");
+  }
+  // The per-leg model does pass this one starboard to starboard (what pinning is for).
+  EXPECT_GT(starboard_unpinned, 0);
+}
+
 TEST(PlannerColreg, CrossingFromStarboardPassesAstern) {
   const opp::Target t{1, {4000, 4000}, {0, -6}};  // collision course: both at (4000, 0) at t = 667 s
   const auto s = canonical(t);

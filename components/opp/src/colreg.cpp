@@ -2,7 +2,60 @@
 
 #include <cmath>
 
+#include "mpgc/geo/angles.hpp"
+
 namespace mpgc::opp {
+
+namespace {
+
+// Eq. 11-15: time difference (own minus target) of arrival at the routes' intersection x_c, or
+// NaN when the routes do not meet ahead of both vessels (eq. 13-14).
+double arrival_difference(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, double c, const ColregParams& p) {
+  if (1.0 - std::fabs(c) <= p.epsilon) return std::nan("");
+  const Vec2 d = y0 - x0;
+  const double vxw = cross(v, w);
+  const double s = cross(d, w) / vxw, q = cross(d, v) / vxw;
+  return (s > 0.0 && q > 0.0) ? s - q : std::nan("");
+}
+
+}  // namespace
+
+const char* to_string(Obligation o) {
+  switch (o) {
+    case Obligation::kNone: return "none";
+    case Obligation::kHeadOn: return "head-on";
+    case Obligation::kGiveWay: return "give-way";
+    case Obligation::kOvertaking: return "overtaking";
+  }
+  return "?";
+}
+
+ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
+  if (e.obligation == Obligation::kNone) return colreg_check(x0, v, y0, w, p);
+  ColregCheck out;
+  out.situation = e.obligation == Obligation::kHeadOn    ? ColregSituation::kHeadOn
+                  : e.obligation == Obligation::kGiveWay ? ColregSituation::kCrossing
+                                                         : ColregSituation::kOvertaking;
+  const double vn = norm(v), wn = norm(w);
+  if (vn < p.min_speed) return out;
+  const Vec2 d = y0 - x0;
+  if (dot(d, v - w) <= 0.0) return out;  // the range opens along this leg: being cleared
+  const bool port_turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi) < -p.port_tolerance;
+  const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);
+  switch (e.obligation) {
+    case Obligation::kHeadOn: out.compliant = cross(v, d) < 0.0 && !port_turn; break;
+    case Obligation::kGiveWay: {
+      const Vec2 r = x0 - y0;
+      const int side = cross(w, r) > 0.0 ? 1 : (cross(w, r) < 0.0 ? -1 : 0);
+      if (e.track_side != 0 && side != e.track_side && dot(r, w) < 0.0) return out;  // across, astern
+      out.compliant = !port_turn && !(dt <= 0.0);
+      break;
+    }
+    case Obligation::kOvertaking: out.compliant = !(dt <= 0.0); break;
+    case Obligation::kNone: break;
+  }
+  return out;
+}
 
 ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p) {
   ColregCheck out;

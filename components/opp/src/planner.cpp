@@ -51,6 +51,8 @@ void Params::validate() const {
           "colreg.theta_head_on", "must be in (0, pi/2)");
   require(fin(colreg.epsilon) && colreg.epsilon > 0 && colreg.epsilon < 1, "colreg.epsilon", "must be in (0, 1)");
   require(fin(colreg.min_speed) && colreg.min_speed >= 0, "colreg.min_speed", "must be finite and >= 0");
+  require(fin(colreg.port_tolerance) && colreg.port_tolerance >= 0 && colreg.port_tolerance < kPi, "colreg.port_tolerance",
+          "must be in [0, pi)");
   require(fin(gamma_s) && gamma_s >= 0, "gamma_s", "must be finite and >= 0");
   require(fin(gamma_f) && gamma_f >= 0, "gamma_f", "must be finite and >= 0");
   require(fin(gamma_m) && gamma_m >= 0, "gamma_m", "must be finite and >= 0");
@@ -129,7 +131,8 @@ class Model {
       for (double s = 0.0; s < len; s += pr_.step) {
         const Vec2 xs = a + (s / len) * (b - a);
         const Vec2 ys = y + (s * inv_u_) * tg.v;
-        if (norm2(xs - ys) < dc2_ && !colreg_check(xs, vel, ys, tg.v, pr_.colreg).compliant) return kColreg;
+        if (norm2(xs - ys) < dc2_ && !colreg_check_pinned(xs, vel, ys, tg.v, tg.pinned, pr_.colreg).compliant)
+          return kColreg;
       }
     }
     return kOkEdge;

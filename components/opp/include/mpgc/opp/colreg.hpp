@@ -14,6 +14,8 @@ struct ColregParams {
   double theta_head_on = 0.39269908169872414;     // [rad] theta_h of §5.5 (22.5 deg)
   double epsilon = 1e-3;                          // [-] tolerance of the crossing test, eq. 13
   double min_speed = 0.05;                        // [m/s] below it a vessel has no route to cross
+  double port_tolerance = 0.08726646259971647;    // [rad] a pinned head-on or give-way leg may point
+                                                  // this far to port of the course it was pinned at (5 deg)
 };
 
 enum class ColregSituation {
@@ -33,5 +35,32 @@ struct ColregCheck {
 // condition (eq. 13-14) with time of arrival at x_c (eq. 15); overtaking (eq. 16) requires the
 // target first at x_c; crossing requires eq. 18.
 ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p);
+
+// An own-ship obligation fixed for the whole encounter (EncounterMemory, encounters.hpp). The
+// per-leg model above re-derives the situation from each leg's own course, so a course change
+// made before the target is inside d_COLREG turns a head-on into a "crossing" that may be passed
+// starboard to starboard; with the situation pinned when the risk of collision first appears,
+// every leg is held to that situation's rule instead.
+enum class Obligation {
+  kNone,        // not pinned: the per-leg model (eq. 11-19) applies
+  kHeadOn,      // rule 14: alter to starboard, pass port to port
+  kGiveWay,     // rules 15-16: the target is on the starboard side: keep out of its way, astern
+  kOvertaking,  // rule 13: keep out of the way of the overtaken vessel
+};
+const char* to_string(Obligation o);
+
+struct PinnedEncounter {
+  Obligation obligation = Obligation::kNone;
+  double course0 = 0.0;  // [rad] own course over ground when the situation was fixed
+  int track_side = 0;    // [-] side of the target's track the own ship was on then: sign(w ^ (x - y))
+};
+
+// One leg (own at x0 with velocity v, target at y0 with velocity w, same time) against a pinned
+// obligation. A leg on which the range opens is clear. Otherwise head-on: the target on the port
+// side (eq. 19) and no alteration to port of course0 beyond port_tolerance; give-way: no
+// alteration to port, and where the routes meet ahead of both (eq. 13-14) the target reaches x_c
+// first (eq. 15), until the own ship is across the target's track astern of it; overtaking: the
+// target first at x_c (§5.3).
+ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
 
 }  // namespace mpgc::opp

@@ -27,6 +27,8 @@ struct Target {
   uint32_t id = 0;  // [-] track id (reporting only)
   Vec2 p;           // [m] position at t = 0
   Vec2 v;           // [m/s] velocity
+  PinnedEncounter pinned;  // COLREG obligation fixed for the encounter (EncounterMemory); kNone:
+                           // the per-leg model of §5
 };
 
 struct Goal {

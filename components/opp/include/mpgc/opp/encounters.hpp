@@ -1,0 +1,48 @@
+// Encounter memory: which COLREG obligation the own ship has towards each target, fixed when the
+// risk of collision first appears and kept until that target is passed (the situation of rules
+// 13-15 is established once, at the start of an encounter, not re-judged from every new course).
+// The planner holds each leg to the pinned obligation (colreg_check_pinned); without the memory
+// it would re-derive the situation per leg (seed 000 §5) and a turn to port made early could
+// turn a head-on into a crossing passed starboard to starboard.
+//
+//   opp::EncounterMemory mem;        // kept across plans
+//   pb.targets = ...;
+//   mem.update(params, own, pb.targets);   // fills Target::pinned, forgets targets no longer tracked
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "mpgc/colreg/colreg.hpp"
+#include "mpgc/opp/planner.hpp"
+
+namespace mpgc::opp {
+
+struct EncounterMemoryParams {
+  // Risk of collision on present courses (rules 7-8): the CPA passes inside cpa_risk within
+  // tcpa_max. Only then is an obligation pinned.
+  double cpa_risk = 1000.0;      // [m] the planner's d_safety
+  double tcpa_max = 1800.0;      // [s] 30 min, the DNV generator's situation length
+  double release_range = 3000.0; // [m] an opening target beyond it is done with (d_COLREG)
+  double theta_o = 0.39269908169872414;  // [rad] overtaking sector (seed 000 eq. 16)
+  double theta_h = 0.39269908169872414;  // [rad] head-on sector (seed 000 §5.5)
+  // Throws std::invalid_argument naming the first bad field.
+  void validate() const;
+};
+
+class EncounterMemory {
+ public:
+  // Own ship and targets at the same time (the plan's t = 0). Pins new encounters, releases
+  // passed ones and sets Target::pinned of every target. Bad parameters or non-finite input
+  // throw std::invalid_argument (the memory is then unchanged).
+  void update(const EncounterMemoryParams& p, const colreg::ShipKinematics& own, std::vector<Target>& targets);
+  // The pinned obligation of a target id (kNone when there is none).
+  PinnedEncounter find(uint32_t id) const;
+  std::size_t size() const { return pinned_.size(); }
+
+ private:
+  std::map<uint32_t, PinnedEncounter> pinned_;
+};
+
+}  // namespace mpgc::opp

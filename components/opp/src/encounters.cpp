@@ -1,0 +1,84 @@
+#include "mpgc/opp/encounters.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace mpgc::opp {
+
+namespace {
+
+Obligation obligation_of(colreg::EncounterType t) {
+  switch (t) {
+    case colreg::EncounterType::kHeadOn: return Obligation::kHeadOn;
+    case colreg::EncounterType::kCrossingGiveWay: return Obligation::kGiveWay;
+    case colreg::EncounterType::kOvertaking: return Obligation::kOvertaking;
+    default: return Obligation::kNone;  // stand-on: the per-leg model (eq. 18) keeps course
+  }
+}
+
+int side_of(Vec2 w, Vec2 r) {
+  const double c = cross(w, r);
+  return c > 0.0 ? 1 : (c < 0.0 ? -1 : 0);
+}
+
+}  // namespace
+
+void EncounterMemoryParams::validate() const {
+  auto need = [](bool ok, const char* field, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("EncounterMemoryParams.") + field + " " + what);
+  };
+  need(std::isfinite(cpa_risk) && cpa_risk >= 0, "cpa_risk", "must be finite and >= 0");
+  need(tcpa_max > 0, "tcpa_max", "must be > 0");
+  need(std::isfinite(release_range) && release_range >= 0, "release_range", "must be finite and >= 0");
+  need(theta_o > 0 && theta_o < 1.5708, "theta_o", "must be in (0, pi/2)");
+  need(theta_h > 0 && theta_h < 1.5708, "theta_h", "must be in (0, pi/2)");
+}
+
+PinnedEncounter EncounterMemory::find(uint32_t id) const {
+  const auto it = pinned_.find(id);
+  return it == pinned_.end() ? PinnedEncounter{} : it->second;
+}
+
+void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipKinematics& own,
+                             std::vector<Target>& targets) {
+  p.validate();
+  colreg::ColregParams cp;
+  cp.theta_o = p.theta_o;
+  cp.theta_h = p.theta_h;
+  cp.d_colreg = std::numeric_limits<double>::infinity();  // the TCPA limit bounds the range
+  cp.cpa_risk = p.cpa_risk;
+  cp.tcpa_max = p.tcpa_max;
+  std::vector<colreg::Assessment> as;  // all first, so that bad input leaves the memory unchanged
+  for (const Target& t : targets) as.push_back(colreg::assess(own, {t.p.x, t.p.y, t.v.x, t.v.y}, cp));
+  std::map<uint32_t, PinnedEncounter> next;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    Target& t = targets[i];
+    const colreg::Assessment& a = as[i];
+    const Vec2 r{own.x - t.p.x, own.y - t.p.y};
+    const auto it = pinned_.find(t.id);
+    if (it != pinned_.end()) {
+      const PinnedEncounter& e = it->second;
+      bool done = a.cpa.tcpa <= 0.0 && a.cpa.range > p.release_range;  // opening and far
+      if (a.cpa.tcpa <= 0.0 && e.obligation == Obligation::kGiveWay)
+        done = done || (e.track_side != 0 && side_of(t.v, r) != e.track_side && dot(r, t.v) < 0.0);
+      else if (a.cpa.tcpa <= 0.0)
+        done = done || std::fabs(a.beta) > 0.5 * geo::kPi;  // abaft the beam and opening
+      if (!done) {
+        next[t.id] = e;
+        t.pinned = e;
+        continue;
+      }
+    }
+    t.pinned = {};
+    const Obligation o = obligation_of(a.type);
+    if (o != Obligation::kNone) {
+      t.pinned = {o, own.course(), side_of(t.v, r)};
+      next[t.id] = t.pinned;
+    }
+  }
+  pinned_ = std::move(next);  // targets no longer tracked are forgotten
+}
+
+}  // namespace mpgc::opp

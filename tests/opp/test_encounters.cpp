@@ -1,0 +1,97 @@
+// EncounterMemory: obligations pinned when the risk of collision appears, kept through the own
+// ship's manoeuvre, released once the target is passed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "mpgc/opp/encounters.hpp"
+
+namespace opp = mpgc::opp;
+namespace colreg = mpgc::colreg;
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+colreg::ShipKinematics own_at(double x, double y, double course_deg, double speed = 6.0) {
+  return colreg::ShipKinematics::from_course(x, y, course_deg * kDeg, speed);
+}
+opp::Target target(uint32_t id, double x, double y, double course_deg, double speed = 6.0) {
+  return {id, {x, y}, {speed * std::cos(course_deg * kDeg), speed * std::sin(course_deg * kDeg)}, {}};
+}
+opp::EncounterMemoryParams params() {
+  opp::EncounterMemoryParams p;
+  p.cpa_risk = 1000;
+  p.tcpa_max = 1800;
+  p.release_range = 3000;
+  return p;
+}
+}  // namespace
+
+TEST(EncounterMemory, PinsAtRiskFarOutsideTheColregZone) {
+  opp::EncounterMemory mem;
+  // Head-on 12 km ahead (TCPA 1000 s), crossing from starboard, one far abeam with no risk.
+  std::vector<opp::Target> ts{target(1, 12000, -200, 180), target(2, 6000, 6000, -90), target(3, 0, 20000, 0)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  EXPECT_EQ(ts[0].pinned.obligation, opp::Obligation::kHeadOn);
+  EXPECT_EQ(ts[1].pinned.obligation, opp::Obligation::kGiveWay);
+  EXPECT_EQ(ts[1].pinned.track_side, -1);  // the own ship is south of the westbound target's track
+  EXPECT_EQ(ts[2].pinned.obligation, opp::Obligation::kNone);
+  EXPECT_NEAR(ts[0].pinned.course0, 0.0, 1e-12);
+  EXPECT_EQ(mem.size(), 2u);
+}
+
+TEST(EncounterMemory, KeepsTheSituationThroughAManoeuvre) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(1, 8000, -200, 180)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kHeadOn);
+  // The own ship has turned 40 deg to port: re-assessed from scratch this is no head-on any more.
+  std::vector<opp::Target> later{target(1, 6000, -200, 180)};
+  mem.update(params(), own_at(500, -400, -40), later);
+  EXPECT_EQ(later[0].pinned.obligation, opp::Obligation::kHeadOn);
+  EXPECT_NEAR(later[0].pinned.course0, 0.0, 1e-12);  // the course at the encounter's start
+}
+
+TEST(EncounterMemory, ReleasesPassedTargetsAndForgetsLostTracks) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(1, 8000, -200, 180), target(2, 6000, 6000, -90)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  ASSERT_EQ(mem.size(), 2u);
+  // Target 1 passed down the port side and is opening abaft the beam; target 2 no longer tracked.
+  std::vector<opp::Target> later{target(1, 3000, -1200, 180)};
+  mem.update(params(), own_at(4000, 0, 0), later);
+  EXPECT_EQ(later[0].pinned.obligation, opp::Obligation::kNone);
+  EXPECT_EQ(mem.size(), 0u);
+}
+
+TEST(EncounterMemory, GiveWayHeldUntilAcrossTheTrackAstern) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kGiveWay);
+  // Own ship turned hard to starboard, range opening but still south of the track: held.
+  std::vector<opp::Target> t1{target(2, 6000, 2000, -90)};
+  mem.update(params(), own_at(4000, 1800, 120), t1);
+  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kGiveWay);
+  // Across the track, astern of the target and opening: released.
+  std::vector<opp::Target> t2{target(2, 6000, 0, -90)};
+  mem.update(params(), own_at(6500, 2500, 30), t2);
+  EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kNone);
+}
+
+TEST(EncounterMemory, BadInputThrowsAndLeavesTheMemoryUnchanged) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(1, 8000, -200, 180)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  std::vector<opp::Target> bad{target(1, 7000, -200, 180), target(9, std::nan(""), 0, 0)};
+  EXPECT_THROW(mem.update(params(), own_at(0, 0, 0), bad), std::invalid_argument);
+  EXPECT_EQ(mem.find(1).obligation, opp::Obligation::kHeadOn);
+  auto p = params();
+  p.cpa_risk = -1;
+  EXPECT_THROW(mem.update(p, own_at(0, 0, 0), ts), std::invalid_argument);
+  p = params();
+  p.tcpa_max = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(mem.update(p, own_at(0, 0, 0), ts), std::invalid_argument);
+  EXPECT_EQ(mem.size(), 1u);
+}
