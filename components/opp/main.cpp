@@ -37,7 +37,9 @@ struct NodeParams {
   double max_state_age = 5;      // [s] own state older than this is not planned from
   bool warm_start = true;        // seed the tree with the previous path of the same goal
   bool pin_encounters = true;    // hold each leg to the obligation fixed at the encounter's start
-  double encounter_tcpa = 1800;  // [s] risk of collision within this TCPA pins an encounter
+  double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
+  double encounter_tcpa = 0;     // [s] risk of collision within this TCPA pins an encounter (0: the
+                                 //     plan's horizon, the straight-line time to the goal)
 };
 
 void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
@@ -77,8 +79,10 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("plan.warm_start", &p.warm_start, true, "re-use the previous path of the same goal");
   ps.add("plan.pin_encounters", &p.pin_encounters, true,
          "fix each target's COLREG obligation when the risk of collision appears (encounters.hpp); false: per leg (§5)");
-  ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 1800.0, "s", 1.0, 86400.0,
-         "a CPA inside d_safety within this time pins the encounter");
+  ps.add("plan.encounter_cpa", &p.encounter_cpa, 2.0, "-", 0.0, 10.0,
+         "risk of collision: CPA inside this many d_safety (2: the NTNU evaluator's r_pref / r_min_cpa)");
+  ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 0.0, "s", 0.0, 86400.0,
+         "a risk of collision within this time pins the encounter (0: the straight-line time to the goal)");
   ps.add("plan.port_tolerance", &q.colreg.port_tolerance, mpgc::geo::deg2rad(5.0), "rad", 0.0, 1.5,
          "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
 }
@@ -239,8 +243,9 @@ int main(int argc, char** argv) {
       const auto own_kin = mpgc::colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
       if (pb.colreg && p.pin_encounters) {
         opp::EncounterMemoryParams ep;
-        ep.cpa_risk = prm.safety_distance;
-        ep.tcpa_max = p.encounter_tcpa;
+        ep.cpa_risk = p.encounter_cpa * prm.safety_distance;
+        // The plan checks COLREG along the whole path: a risk anywhere within its horizon matters.
+        ep.tcpa_max = p.encounter_tcpa > 0 ? p.encounter_tcpa : opp::norm(pb.goal.p - pb.start) / pb.speed;
         ep.release_range = prm.colreg_distance;
         ep.theta_o = prm.colreg.theta_overtaking;
         ep.theta_h = prm.colreg.theta_head_on;

@@ -95,3 +95,17 @@ TEST(EncounterMemory, BadInputThrowsAndLeavesTheMemoryUnchanged) {
   EXPECT_THROW(mem.update(p, own_at(0, 0, 0), ts), std::invalid_argument);
   EXPECT_EQ(mem.size(), 1u);
 }
+
+TEST(EncounterMemory, ATargetThatTurnsStartsANewEncounter) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kGiveWay);
+  // 10 deg is the same encounter; 60 deg, now heading straight for the own ship, is a new one.
+  std::vector<opp::Target> t1{target(2, 5900, 5500, -100)};
+  mem.update(params(), own_at(500, 0, 0), t1);
+  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kGiveWay);
+  std::vector<opp::Target> t2{target(2, 6000, 500, 180)};
+  mem.update(params(), own_at(1000, 0, 0), t2);
+  EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kHeadOn);
+}

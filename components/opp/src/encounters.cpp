@@ -1,5 +1,6 @@
 #include "mpgc/opp/encounters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -32,13 +33,14 @@ void EncounterMemoryParams::validate() const {
   need(std::isfinite(cpa_risk) && cpa_risk >= 0, "cpa_risk", "must be finite and >= 0");
   need(tcpa_max > 0, "tcpa_max", "must be > 0");
   need(std::isfinite(release_range) && release_range >= 0, "release_range", "must be finite and >= 0");
+  need(new_course > 0 && new_course <= 3.1416, "new_course", "must be in (0, pi]");
   need(theta_o > 0 && theta_o < 1.5708, "theta_o", "must be in (0, pi/2)");
   need(theta_h > 0 && theta_h < 1.5708, "theta_h", "must be in (0, pi/2)");
 }
 
 PinnedEncounter EncounterMemory::find(uint32_t id) const {
   const auto it = pinned_.find(id);
-  return it == pinned_.end() ? PinnedEncounter{} : it->second;
+  return it == pinned_.end() ? PinnedEncounter{} : it->second.e;
 }
 
 void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipKinematics& own,
@@ -52,21 +54,26 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
   cp.tcpa_max = p.tcpa_max;
   std::vector<colreg::Assessment> as;  // all first, so that bad input leaves the memory unchanged
   for (const Target& t : targets) as.push_back(colreg::assess(own, {t.p.x, t.p.y, t.v.x, t.v.y}, cp));
-  std::map<uint32_t, PinnedEncounter> next;
+  std::map<uint32_t, Entry> next;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     Target& t = targets[i];
     const colreg::Assessment& a = as[i];
+    const colreg::ShipKinematics tk{t.p.x, t.p.y, t.v.x, t.v.y};
     const Vec2 r{own.x - t.p.x, own.y - t.p.y};
     const auto it = pinned_.find(t.id);
     if (it != pinned_.end()) {
-      const PinnedEncounter& e = it->second;
-      bool done = a.cpa.tcpa <= 0.0 && a.cpa.range > p.release_range;  // opening and far
+      const PinnedEncounter& e = it->second.e;
+      // Opening and farther than where it began (a give-way manoeuvre that opens the range for a
+      // while has not ended the encounter).
+      bool done = a.cpa.tcpa <= 0.0 && a.cpa.range > std::max(p.release_range, it->second.range0);
+      if (tk.speed() > 0.5)  // the course of a (nearly) stopped target is noise
+        done = done || std::fabs(std::remainder(tk.course() - e.target_course, 2.0 * geo::kPi)) > p.new_course;
       if (a.cpa.tcpa <= 0.0 && e.obligation == Obligation::kGiveWay)
         done = done || (e.track_side != 0 && side_of(t.v, r) != e.track_side && dot(r, t.v) < 0.0);
       else if (a.cpa.tcpa <= 0.0)
         done = done || std::fabs(a.beta) > 0.5 * geo::kPi;  // abaft the beam and opening
       if (!done) {
-        next[t.id] = e;
+        next[t.id] = it->second;
         t.pinned = e;
         continue;
       }
@@ -74,8 +81,8 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
     t.pinned = {};
     const Obligation o = obligation_of(a.type);
     if (o != Obligation::kNone) {
-      t.pinned = {o, own.course(), side_of(t.v, r)};
-      next[t.id] = t.pinned;
+      t.pinned = {o, own.course(), side_of(t.v, r), tk.course()};
+      next[t.id] = {t.pinned, a.cpa.range};
     }
   }
   pinned_ = std::move(next);  // targets no longer tracked are forgotten

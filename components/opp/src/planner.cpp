@@ -127,11 +127,15 @@ class Model {
       if (min_dist2_linear(r0, vel - tg.v, T) < lim) return kTarget;
       if (!colreg) continue;
       // §5 at the leg's start; a leg longer than one step is checked every step along it, as the
-      // chain of collinear waypoints it stands for (a long edge must not jump over the zone).
+      // chain of collinear waypoints it stands for (a long edge must not jump over the zone). A
+      // pinned obligation holds from the moment the risk of collision was found, at any range:
+      // crossing ahead of a give-way target just outside d_COLREG is still crossing ahead.
+      const bool pinned = tg.pinned.obligation != Obligation::kNone;
       for (double s = 0.0; s < len; s += pr_.step) {
         const Vec2 xs = a + (s / len) * (b - a);
         const Vec2 ys = y + (s * inv_u_) * tg.v;
-        if (norm2(xs - ys) < dc2_ && !colreg_check_pinned(xs, vel, ys, tg.v, tg.pinned, pr_.colreg).compliant)
+        if ((pinned || norm2(xs - ys) < dc2_) &&
+            !colreg_check_pinned(xs, vel, ys, tg.v, tg.pinned, pr_.colreg).compliant)
           return kColreg;
       }
     }

@@ -53,6 +53,7 @@ struct PinnedEncounter {
   Obligation obligation = Obligation::kNone;
   double course0 = 0.0;  // [rad] own course over ground when the situation was fixed
   int track_side = 0;    // [-] side of the target's track the own ship was on then: sign(w ^ (x - y))
+  double target_course = 0.0;  // [rad] the target's course then (a new course is a new encounter)
 };
 
 // One leg (own at x0 with velocity v, target at y0 with velocity w, same time) against a pinned

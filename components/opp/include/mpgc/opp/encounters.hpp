@@ -24,7 +24,11 @@ struct EncounterMemoryParams {
   // tcpa_max. Only then is an obligation pinned.
   double cpa_risk = 1000.0;      // [m] the planner's d_safety
   double tcpa_max = 1800.0;      // [s] 30 min, the DNV generator's situation length
-  double release_range = 3000.0; // [m] an opening target beyond it is done with (d_COLREG)
+  double release_range = 3000.0; // [m] an opening target beyond it and beyond the range it was
+                                 //     pinned at is done with (d_COLREG)
+  // A target that changes course by more than this starts a new encounter (re-assessed): the
+  // own ship's manoeuvres never re-open the situation, the target's do (unexpected behaviour).
+  double new_course = 0.2617993877991494;  // [rad] 15 deg
   double theta_o = 0.39269908169872414;  // [rad] overtaking sector (seed 000 eq. 16)
   double theta_h = 0.39269908169872414;  // [rad] head-on sector (seed 000 §5.5)
   // Throws std::invalid_argument naming the first bad field.
@@ -34,7 +38,7 @@ struct EncounterMemoryParams {
 class EncounterMemory {
  public:
   // Own ship and targets at the same time (the plan's t = 0). Pins new encounters, releases
-  // passed ones and sets Target::pinned of every target. Bad parameters or non-finite input
+  // passed ones (and those whose target turned) and sets Target::pinned of every target. Bad parameters or non-finite input
   // throw std::invalid_argument (the memory is then unchanged).
   void update(const EncounterMemoryParams& p, const colreg::ShipKinematics& own, std::vector<Target>& targets);
   // The pinned obligation of a target id (kNone when there is none).
@@ -42,7 +46,11 @@ class EncounterMemory {
   std::size_t size() const { return pinned_.size(); }
 
  private:
-  std::map<uint32_t, PinnedEncounter> pinned_;
+  struct Entry {
+    PinnedEncounter e;
+    double range0;  // [m] range when pinned
+  };
+  std::map<uint32_t, Entry> pinned_;
 };
 
 }  // namespace mpgc::opp
