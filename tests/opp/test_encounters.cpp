@@ -109,3 +109,18 @@ TEST(EncounterMemory, ATargetThatTurnsStartsANewEncounter) {
   mem.update(params(), own_at(1000, 0, 0), t2);
   EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kHeadOn);
 }
+
+TEST(EncounterMemory, AGiveWayManoeuvreThatOpensTheRangeDoesNotEndTheEncounter) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};  // range 8.5 km, beyond release_range
+  mem.update(params(), own_at(0, 0, 0), ts);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kGiveWay);
+  // Turned away (south): opening at 5.4 km, beyond release_range but inside the pinning range.
+  std::vector<opp::Target> t1{target(2, 6000, 4000, -90)};
+  mem.update(params(), own_at(2000, 300, 180), t1);
+  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kGiveWay);
+  // Opening beyond the range it was pinned at: over.
+  std::vector<opp::Target> t2{target(2, 6000, 3000, -90)};
+  mem.update(params(), own_at(-4000, 1500, 180), t2);
+  EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kNone);
+}
