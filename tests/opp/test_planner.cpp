@@ -253,6 +253,31 @@ TEST(PlannerColreg, PinnedHeadOnMetOutsideTheColregZonePassesPortToPort) {
   EXPECT_GT(starboard_unpinned, 0);
 }
 
+TEST(PlannerColreg, PinnedGiveWayDoesNotCrossAheadOutsideTheColregZone) {
+  // A slower target from starboard; the own ship would reach the crossing (N = 6000) first, so
+  // crossing ahead is the short way. With d_COLREG = 1 km the per-leg model lets the own ship
+  // cross ahead while the target is still farther than that; a pinned give-way holds at any range.
+  const opp::Target t{1, {6000, 4200}, {0, -4}, {}};  // 200 m east of the crossing when own is there
+  auto s = canonical(t, 12000);
+  s.params.colreg_distance = 1000;
+  int ahead_unpinned = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    const auto free = run(s, seed, 4000);
+    ASSERT_EQ(free.status, opp::Status::kOk) << free.reason;
+    const double tf = time_at_north(free, 6000);
+    ahead_unpinned += std::isfinite(tf) && (t.p + tf * t.v).y > at(free, tf).y;
+    auto pinned = s;
+    pinned.problem.targets[0].pinned = {opp::Obligation::kGiveWay, 0.0, -1, -kPi / 2};
+    const auto r = run(pinned, seed, 4000);
+    ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+    expect_valid(pinned.problem, pinned.params, r);
+    const double tc = time_at_north(r, 6000);
+    ASSERT_TRUE(std::isfinite(tc));
+    EXPECT_LT((t.p + tc * t.v).y, at(r, tc).y) << "seed " << seed;  // the target already past: astern
+  }
+  EXPECT_GT(ahead_unpinned, 0);
+}
+
 TEST(PlannerColreg, CrossingFromStarboardPassesAstern) {
   const opp::Target t{1, {4000, 4000}, {0, -6}};  // collision course: both at (4000, 0) at t = 667 s
   const auto s = canonical(t);
