@@ -484,3 +484,31 @@ TEST(PlannerInput, EscapeFromInsideTheSafetyDistance) {
     }
   }
 }
+
+TEST(PlannerFallback, FirstRelaxationKeepsThePinnedObligations) {
+  // The compliant pass gets almost no budget (compliant_share 0.001: 4 iterations, no solution).
+  // With a pinned target the planner relaxes first to the pinned obligations alone, so the
+  // head-on met outside d_COLREG (the problem above) is still passed port to port; with no pinned
+  // target it relaxes all the way at once and takes the cheaper starboard-to-starboard passing.
+  const opp::Target t{1, {12000, 100}, {-6, 0}, {}};
+  auto s = canonical(t, 20000);
+  s.problem.goal.p = {20000, -2500};
+  s.problem.bounds = {-2000, -8000, 21000, 5000};
+  s.params.colreg_distance = 4000;
+  s.params.compliant_share = 0.001;
+  auto pinned = s;
+  pinned.problem.targets[0].pinned = {opp::Obligation::kHeadOn, 0.0, 0, kPi};
+  int starboard_free = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    const auto r = run(pinned, seed, 4000);
+    ASSERT_EQ(r.status, opp::Status::kRelaxed) << r.reason;
+    EXPECT_NE(r.reason.find("pinned obligations"), std::string::npos) << r.reason;
+    expect_valid(pinned.problem, pinned.params, r);
+    EXPECT_LT(passing_side(r, t), 0) << "seed " << seed;
+    const auto f = run(s, seed, 4000);
+    ASSERT_EQ(f.status, opp::Status::kRelaxed) << f.reason;
+    EXPECT_EQ(f.reason.find("pinned"), std::string::npos) << f.reason;
+    starboard_free += passing_side(f, t) > 0;
+  }
+  EXPECT_GT(starboard_free, 0);
+}

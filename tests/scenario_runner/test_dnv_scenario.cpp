@@ -69,7 +69,7 @@ TEST(DnvScenario, ConvertsTheHeadOnSituation) {
   EXPECT_NEAR(s.cruise_speed, 10.0 * geo::kKnot, 1e-12);
   EXPECT_DOUBLE_EQ(s.time_limit, 2700.0);  // 9259 m at 10 kn = 1800 s, x 1.5, up to 100 s
   EXPECT_DOUBLE_EQ(s.safety_distance, 926.0);
-  EXPECT_DOUBLE_EQ(s.evaluation_min_cpa, 926.0);
+  EXPECT_NEAR(s.evaluation_min_cpa, 0.95 * 926.0, 1e-9);  // the safety criterion's lower edge
   EXPECT_TRUE(s.colreg);
   EXPECT_EQ(s.params.at("opp").at("plan.colreg_distance"), "5556");
   EXPECT_EQ(s.params.at("guidance_control").at("los.lookahead"), "305");
@@ -92,8 +92,8 @@ TEST(DnvScenario, ConvertsTheHeadOnSituation) {
   EXPECT_EQ(s.criteria.required[0].target_id, 1u);
   EXPECT_TRUE(s.criteria.required[0].compliant);
   EXPECT_NE(s.description.find("head-on"), std::string::npos);
-  // The evaluation is scaled so that its minimum CPA is d_safety.
-  EXPECT_NEAR(sr::evaluation_params(s, 122.0).r_min_cpa, 926.0, 1e-9);
+  // The evaluation is scaled so that its minimum CPA is 0.95 d_safety.
+  EXPECT_NEAR(sr::evaluation_params(s, 122.0).r_min_cpa, 0.95 * 926.0, 1e-9);
 }
 
 // Every one of the 55 situations converts; every target carries its desired type as a requirement;

@@ -113,10 +113,10 @@ class Model {
     return d <= pb_.goal.heading_tolerance;
   }
 
-  // eq. 3-4 along the leg a -> b started at time ta, against every target; plus §5 if colreg.
+  // eq. 3-4 along the leg a -> b started at time ta, against every target; plus COLREG at `level`.
   // `escape`: a leg from a start that is already inside d_safety of a target may not get closer
   // to it than it starts (Params::escape_start).
-  Reject moving_ok(Vec2 a, double ta, Vec2 b, double len, bool colreg, bool escape = false) const {
+  Reject moving_ok(Vec2 a, double ta, Vec2 b, double len, ColregLevel level, bool escape = false) const {
     if (pb_.targets.empty()) return kOkEdge;
     const Vec2 vel = (pb_.speed / len) * (b - a);
     const double T = len * inv_u_;
@@ -125,12 +125,12 @@ class Model {
       const Vec2 r0 = a - y;
       const double lim = escape ? std::min(ds2_, norm2(r0) * (1.0 - 1e-9)) : ds2_;
       if (min_dist2_linear(r0, vel - tg.v, T) < lim) return kTarget;
-      if (!colreg) continue;
+      const bool pinned = tg.pinned.obligation != Obligation::kNone;
+      if (level == ColregLevel::kNone || (level == ColregLevel::kPinned && !pinned)) continue;
       // §5 at the leg's start; a leg longer than one step is checked every step along it, as the
       // chain of collinear waypoints it stands for (a long edge must not jump over the zone). A
       // pinned obligation holds from the moment the risk of collision was found, at any range:
       // crossing ahead of a give-way target just outside d_COLREG is still crossing ahead.
-      const bool pinned = tg.pinned.obligation != Obligation::kNone;
       for (double s = 0.0; s < len; s += pr_.step) {
         const Vec2 xs = a + (s / len) * (b - a);
         const Vec2 ys = y + (s * inv_u_) * tg.v;
@@ -208,7 +208,7 @@ class Tree {
     try_goal(0);
   }
 
-  bool colreg = true;  // §5 enforced on new edges
+  ColregLevel colreg = ColregLevel::kFull;  // COLREG enforced on new edges
 
   // Inserts a previous path as a chain from the root (warm start). Returns true if it reaches the goal.
   bool seed_chain(const std::vector<Vec2>& pts) {
@@ -334,7 +334,7 @@ class Tree {
   bool solved() const { return snap_cost_ < kInf; }
   const std::vector<Vec2>& best_path() const { return snap_; }
   int size() const { return static_cast<int>(nodes_.size()); }
-  bool best_is_compliant() const { return snap_compliant_; }
+  ColregLevel best_level() const { return snap_level_; }
   const uint64_t* rejects() const { return rejects_; }
   int goal_attempts() const { return goal_attempts_; }
   double closest_to_goal() const { return closest_goal_; }
@@ -539,7 +539,7 @@ class Tree {
     best_node_ = bi;
     if (bi >= 0 && best < snap_cost_) {
       snap_cost_ = best;
-      snap_compliant_ = colreg;
+      snap_level_ = colreg;
       snap_.clear();
       for (int i = bi; i >= 0; i = nodes_[i].parent) snap_.push_back(nodes_[i].p);
       std::reverse(snap_.begin(), snap_.end());
@@ -574,7 +574,7 @@ class Tree {
   bool approach_ = false;
   int best_node_ = -1;
   double snap_cost_ = kInf;
-  bool snap_compliant_ = false;
+  ColregLevel snap_level_ = ColregLevel::kNone;
   std::vector<Vec2> snap_;
   double k_rrt_ = 0, r_rrt_ = 0, goal_fixed_ = 0, root_fixed_d_ = 0;
   uint64_t rejects_[Model::kRejectCount] = {};
@@ -661,28 +661,36 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
     return res;
   }
   auto tree = std::make_unique<Tree>(model, problem, params, res.stats, hooks, params.seed);
-  tree->colreg = problem.colreg;
+  tree->colreg = problem.colreg ? ColregLevel::kFull : ColregLevel::kNone;
+  bool any_pinned = false;
+  for (const Target& t : problem.targets) any_pinned = any_pinned || t.pinned.obligation != Obligation::kNone;
   if (!warm.empty()) res.stats.warm_started = tree->seed_chain(warm_tail(warm, problem.start));
   // Best over restarted trees (the incumbent survives a restart, so the cost stays monotone).
   double best_cost = tree->best_cost();
   std::vector<Vec2> best_pts = tree->best_path();
-  bool best_compliant = tree->best_is_compliant();
+  ColregLevel best_level = tree->best_level();
   int last_improvement = 0;
-  const int share_iter = static_cast<int>(std::ceil(params.compliant_share * params.max_iterations));
-  const double share_time = params.compliant_share * params.time_budget;
+  // Budget shares after which a level still without a solution gives way to the next (§6): the
+  // full constraint for compliant_share, the pinned obligations alone (rule 17(b): the stand-on
+  // ship may act when the other does not) for half the rest, then none.
+  const double shares[2] = {params.compliant_share, 0.5 * (1.0 + params.compliant_share)};
   while (res.stats.iterations < params.max_iterations) {
     const double el = hooks.elapsed ? hooks.elapsed() - t0 : 0.0;
     if (hooks.elapsed && el >= params.time_budget) break;
     if (hooks.stop && hooks.stop()) break;
-    if (tree->colreg && best_pts.empty() &&
-        (res.stats.iterations >= share_iter || (hooks.elapsed && el >= share_time))) {
-      res.stats.iterations_compliant = res.stats.iterations;
-      tree->colreg = false;  // §6: relax; the compliant tree stays valid under the weaker constraint
+    if (tree->colreg != ColregLevel::kNone && best_pts.empty()) {
+      const double share = shares[tree->colreg == ColregLevel::kFull ? 0 : 1];
+      if (res.stats.iterations >= static_cast<int>(std::ceil(share * params.max_iterations)) ||
+          (hooks.elapsed && el >= share * params.time_budget)) {
+        if (tree->colreg == ColregLevel::kFull) res.stats.iterations_compliant = res.stats.iterations;
+        // §6: relax; the tree stays valid under the weaker constraint.
+        tree->colreg = tree->colreg == ColregLevel::kFull && any_pinned ? ColregLevel::kPinned : ColregLevel::kNone;
+      }
     }
     // A tree whose solution has not improved for restart_after iterations is stuck in one timing
     // of the targets (the time at a node is fixed by its path): start a fresh tree.
     if (params.restart_after > 0 && !best_pts.empty() && res.stats.iterations - last_improvement >= params.restart_after) {
-      const bool colreg = tree->colreg;
+      const ColregLevel colreg = tree->colreg;
       ++res.stats.restarts;
       tree = std::make_unique<Tree>(model, problem, params, res.stats, hooks,
                                     params.seed + 0x9E3779B97F4A7C15ULL * static_cast<uint64_t>(res.stats.restarts));
@@ -693,12 +701,12 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
     if (tree->best_cost() < best_cost) {
       best_cost = tree->best_cost();
       best_pts = tree->best_path();
-      best_compliant = tree->best_is_compliant();
+      best_level = tree->best_level();
       last_improvement = res.stats.iterations;
     }
     if (hooks.progress) hooks.progress(res.stats.iterations, best_cost);
   }
-  if (tree->colreg) res.stats.iterations_compliant = res.stats.iterations;
+  if (tree->colreg == ColregLevel::kFull) res.stats.iterations_compliant = res.stats.iterations;
   res.stats.nodes = tree->size();
   res.stats.planning_time = hooks.elapsed ? hooks.elapsed() - t0 : 0.0;
   if (res.stats.first_solution_time >= 0) res.stats.first_solution_time -= t0;
@@ -719,9 +727,13 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
     return res;
   }
   const std::vector<Vec2>& pts = best_pts;
-  res.relaxed = problem.colreg && !best_compliant;
+  res.relaxed = problem.colreg && best_level != ColregLevel::kFull;
   res.status = res.relaxed ? Status::kRelaxed : Status::kOk;
-  if (res.relaxed) res.reason = "no COLREG-compliant path within the compliant budget share; constraint relaxed";
+  if (res.relaxed)
+    res.reason = best_level == ColregLevel::kPinned
+                     ? "no COLREG-compliant path within the compliant budget share; relaxed to the pinned obligations "
+                       "(stand-on and no-risk targets unconstrained)"
+                     : "no COLREG-compliant path within the compliant budget share; constraint relaxed";
   if (params.escape_start) {
     std::string inside;
     if (problem.fixed && problem.fixed->nearest(problem.start) < params.safety_distance) inside = "a fixed obstacle";
@@ -757,7 +769,7 @@ std::string check_path(const Problem& pb, const Params& pr, const std::vector<Ve
     const bool esc = i == 0 && pr.escape_start;
     const double dfix = esc ? std::min(pr.safety_distance, m.fixed().nearest(a) * (1.0 - 1e-9)) : pr.safety_distance;
     if (!m.fixed().segment_clear(a, b, dfix)) return leg + "closer than d_safety to a fixed obstacle";
-    const auto r = m.moving_ok(a, len_acc / pb.speed, b, len, colreg, esc);
+    const auto r = m.moving_ok(a, len_acc / pb.speed, b, len, colreg ? ColregLevel::kFull : ColregLevel::kNone, esc);
     if (r == Model::kTarget) return leg + "closer than d_safety to a target (eq. 3-4)";
     if (r == Model::kColreg) return leg + "not COLREG-compliant (§5)";
     dir = (1.0 / len) * seg;

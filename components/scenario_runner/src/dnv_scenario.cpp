@@ -147,7 +147,10 @@ Scenario dnv_scenario(const sa::DnvSituation& d, const std::vector<std::string>&
   // Safety: 0.5 NM unless a target starts so close that it cannot be kept.
   s.safety_distance = std::min(c.safety_distance, c.min_range_share * nearest);
   if (!(s.safety_distance >= 1.0)) fail(f, "targetShips", "a target starts on the own ship");
-  s.evaluation_min_cpa = s.safety_distance;
+  // Rule 13's "keep clear" (r_min_cpa) at the lower edge of what the safety criterion accepts:
+  // with r_min_cpa = d_safety an overtaking passed at 0.998 d_safety failed COLREG while it met
+  // the safety criterion, whose tolerance is there for the same tracking errors.
+  s.evaluation_min_cpa = (1.0 - c.safety_tolerance) * s.safety_distance;
   s.colreg = true;
 
   // Heading controller by pole placement on the own hull's Nomoto K, T at its speed (the

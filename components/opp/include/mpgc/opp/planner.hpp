@@ -52,6 +52,10 @@ struct Problem {
   bool colreg = true;                  // require §5 compliance first (relax only if none, §6)
 };
 
+// How much of COLREG an edge must meet: every rule (§5 per leg, pinned obligations), the pinned
+// obligations alone (the first relaxation), or none (§6).
+enum class ColregLevel { kNone, kPinned, kFull };
+
 struct Params {
   // Constraints (§4.1, §4.2, §5).
   double safety_distance = 1000.0;     // [m] d_safety, eq. 4
@@ -81,6 +85,8 @@ struct Params {
   double time_budget = 0.5;            // [s] per plan, measured with Hooks::elapsed (if given)
   double compliant_share = 0.5;        // [-] budget share after which a compliant pass still
                                        //     without any solution gives way to the relaxed pass
+                                       //     (first to the pinned obligations alone, when a
+                                       //     target has one, for half the rest; then none)
   uint64_t seed = 1;                   // [-] std::mt19937_64 seed
   // Throws std::invalid_argument naming the first bad field.
   void validate() const;
