@@ -225,17 +225,24 @@ int passing_side(const opp::Result& r, const opp::Target& t) {
   return opp::cross(dir, y - x) > 0 ? 1 : -1;
 }
 
+// A head-on target 12 km ahead, d_COLREG 4 km, the goal to port (see the test below).
+const opp::Target kHeadOnFar{1, {12000, 100}, {-6, 0}, {}};
+opp::Scenario head_on_far_goal_to_port() {
+  auto s = canonical(kHeadOnFar, 20000);
+  s.problem.goal.p = {20000, -2500};
+  s.problem.bounds = {-2000, -8000, 21000, 5000};
+  s.params.colreg_distance = 4000;
+  return s;
+}
+
 TEST(PlannerColreg, PinnedHeadOnMetOutsideTheColregZonePassesPortToPort) {
   // A head-on target 12 km ahead, d_COLREG 4 km, the goal to port. Per leg (§5) a turn to
   // port made before the target is inside d_COLREG leaves a "crossing" that may be passed
   // starboard to starboard, and that is the cheaper way to this goal. With the head-on pinned
   // (EncounterMemory) every leg inside the zone must keep the target to port and may not point
   // to port of the course at the start.
-  const opp::Target t{1, {12000, 100}, {-6, 0}, {}};
-  auto s = canonical(t, 20000);
-  s.problem.goal.p = {20000, -2500};
-  s.problem.bounds = {-2000, -8000, 21000, 5000};
-  s.params.colreg_distance = 4000;
+  const opp::Target& t = kHeadOnFar;
+  auto s = head_on_far_goal_to_port();
   int starboard_unpinned = 0;
   for (uint64_t seed = 1; seed <= 3; ++seed) {
     const auto free = run(s, seed, 4000);
@@ -490,11 +497,8 @@ TEST(PlannerFallback, FirstRelaxationKeepsThePinnedObligations) {
   // With a pinned target the planner relaxes first to the pinned obligations alone, so the
   // head-on met outside d_COLREG (the problem above) is still passed port to port; with no pinned
   // target it relaxes all the way at once and takes the cheaper starboard-to-starboard passing.
-  const opp::Target t{1, {12000, 100}, {-6, 0}, {}};
-  auto s = canonical(t, 20000);
-  s.problem.goal.p = {20000, -2500};
-  s.problem.bounds = {-2000, -8000, 21000, 5000};
-  s.params.colreg_distance = 4000;
+  const opp::Target& t = kHeadOnFar;
+  auto s = head_on_far_goal_to_port();
   s.params.compliant_share = 0.001;
   auto pinned = s;
   pinned.problem.targets[0].pinned = {opp::Obligation::kHeadOn, 0.0, 0, kPi};
