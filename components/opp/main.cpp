@@ -80,7 +80,7 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("plan.pin_encounters", &p.pin_encounters, true,
          "fix each target's COLREG obligation when the risk of collision appears (encounters.hpp); false: per leg (§5)");
   ps.add("plan.encounter_cpa", &p.encounter_cpa, 2.0, "-", 0.0, 10.0,
-         "risk of collision: CPA inside this many d_safety (2: the NTNU evaluator's r_pref / r_min_cpa)");
+         "risk of collision: CPA inside this many d_safety (about the NTNU evaluator's r_pref / r_min_cpa, 1.9)");
   ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 0.0, "s", 0.0, 86400.0,
          "a risk of collision within this time pins the encounter (0: the straight-line time to the goal)");
   ps.add("plan.port_tolerance", &q.colreg.port_tolerance, mpgc::geo::deg2rad(5.0), "rad", 0.0, 1.5,

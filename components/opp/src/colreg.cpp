@@ -45,9 +45,7 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
   switch (e.obligation) {
     case Obligation::kHeadOn: out.compliant = cross(v, d) < 0.0 && !port_turn; break;
     case Obligation::kGiveWay: {
-      const Vec2 r = x0 - y0;
-      const int side = cross(w, r) > 0.0 ? 1 : (cross(w, r) < 0.0 ? -1 : 0);
-      if (e.track_side != 0 && side != e.track_side && dot(r, w) < 0.0) return out;  // across, astern
+      if (across_astern(e, w, x0 - y0)) return out;
       out.compliant = !port_turn && !(dt <= 0.0);
       break;
     }

@@ -19,11 +19,6 @@ Obligation obligation_of(colreg::EncounterType t) {
   }
 }
 
-int side_of(Vec2 w, Vec2 r) {
-  const double c = cross(w, r);
-  return c > 0.0 ? 1 : (c < 0.0 ? -1 : 0);
-}
-
 }  // namespace
 
 void EncounterMemoryParams::validate() const {
@@ -33,9 +28,9 @@ void EncounterMemoryParams::validate() const {
   need(std::isfinite(cpa_risk) && cpa_risk >= 0, "cpa_risk", "must be finite and >= 0");
   need(tcpa_max > 0, "tcpa_max", "must be > 0");
   need(std::isfinite(release_range) && release_range >= 0, "release_range", "must be finite and >= 0");
-  need(new_course > 0 && new_course <= 3.1416, "new_course", "must be in (0, pi]");
-  need(theta_o > 0 && theta_o < 1.5708, "theta_o", "must be in (0, pi/2)");
-  need(theta_h > 0 && theta_h < 1.5708, "theta_h", "must be in (0, pi/2)");
+  need(new_course > 0 && new_course <= geo::kPi, "new_course", "must be in (0, pi]");
+  need(theta_o > 0 && theta_o < geo::kPi / 2, "theta_o", "must be in (0, pi/2)");
+  need(theta_h > 0 && theta_h < geo::kPi / 2, "theta_h", "must be in (0, pi/2)");
 }
 
 PinnedEncounter EncounterMemory::find(uint32_t id) const {
@@ -69,7 +64,7 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
       if (tk.speed() > 0.5)  // the course of a (nearly) stopped target is noise
         done = done || std::fabs(std::remainder(tk.course() - e.target_course, 2.0 * geo::kPi)) > p.new_course;
       if (a.cpa.tcpa <= 0.0 && e.obligation == Obligation::kGiveWay)
-        done = done || (e.track_side != 0 && side_of(t.v, r) != e.track_side && dot(r, t.v) < 0.0);
+        done = done || across_astern(e, t.v, r);
       else if (a.cpa.tcpa <= 0.0)
         done = done || std::fabs(a.beta) > 0.5 * geo::kPi;  // abaft the beam and opening
       if (!done) {
@@ -81,7 +76,7 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
     t.pinned = {};
     const Obligation o = obligation_of(a.type);
     if (o != Obligation::kNone) {
-      t.pinned = {o, own.course(), side_of(t.v, r), tk.course()};
+      t.pinned = {o, own.course(), track_side(t.v, r), tk.course()};
       next[t.id] = {t.pinned, a.cpa.range};
     }
   }

@@ -56,6 +56,17 @@ struct PinnedEncounter {
   double target_course = 0.0;  // [rad] the target's course then (a new course is a new encounter)
 };
 
+// Side of the target's track (velocity w) that the own ship (at r from the target) is on: +1, -1,
+// or 0 on the track line.
+inline int track_side(Vec2 w, Vec2 r) {
+  const double c = cross(w, r);
+  return c > 0.0 ? 1 : (c < 0.0 ? -1 : 0);
+}
+// Give-way met: the own ship is across the target's track from where it was pinned, astern of it.
+inline bool across_astern(const PinnedEncounter& e, Vec2 w, Vec2 r) {
+  return e.track_side != 0 && track_side(w, r) != e.track_side && dot(r, w) < 0.0;
+}
+
 // One leg (own at x0 with velocity v, target at y0 with velocity w, same time) against a pinned
 // obligation. A leg on which the range opens is clear. Otherwise head-on: the target on the port
 // side (eq. 19) and no alteration to port of course0 beyond port_tolerance; give-way: no
