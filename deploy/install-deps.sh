@@ -14,6 +14,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev
   # multi-host tests (network namespaces)
   iproute2
+  # hardware in the loop: gpsd and libgps for the ship bridge, gpsfake (gpsd-clients) for the log replays
+  gpsd gpsd-clients libgps-dev
 )
 
 missing=()

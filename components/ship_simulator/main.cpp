@@ -2,13 +2,18 @@
 // control/actuators, moves the targets, publishes sensors, ground truth and the clock.
 // Time modes (README.md): realtime, factor (fixed real-time factor), lockstep (barrier on
 // clock/ack, as fast as the slowest participant). The simulator runs on the wall clock.
+#include <algorithm>
+#include <chrono>
+#include <map>
 #include <cmath>
 #include <memory>
 
 #include "mpgc/msg/control.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/sensors.hpp"
+#include "mpgc/net/udp.hpp"
 #include "mpgc/runtime/component.hpp"
+#include "mpgc/ship_simulator/devices.hpp"
 #include "mpgc/ship_simulator/lockstep.hpp"
 #include "mpgc/ship_simulator/world.hpp"
 #include "mpgc/topics.hpp"
@@ -31,6 +36,12 @@ struct Params {
   double start_settle = 0.5;  // [s] wall time between all participants alive and step 0
   double ack_timeout = 1.0;  // [s] wall time before the current Clock is sent again
   double truth_period = 0.1; // [s] simulated time between sim/truth samples
+  // Hardware in the loop (README "The simulator as hardware"): NMEA/AIS out on UDP, orders in.
+  bool hil = false;
+  std::string hil_host;
+  int gnss_port = 0, ais_port = 0, gyro_port = 0, feedback_port = 0, orders_port = 0;
+  double gnss_period = 0.2;     // [s] simulated
+  double order_timeout = 2.0;   // [s] simulated: the actuator watchdog
 
   void declare(rt::ParamSet& ps) {
     ps.add("world.file", &world_file, "", "world YAML file (own ship, targets, sensors; README.md)");
@@ -43,6 +54,17 @@ struct Params {
            "wall time to let discovery settle after every participant is alive, before step 0");
     ps.add("lockstep.ack_timeout", &ack_timeout, 1.0, "s", 0.01, 60.0, "resend the Clock after this wall time without progress");
     ps.add("truth.period", &truth_period, 0.1, "s", 0.001, 60.0, "sim/truth publication period (simulated time)");
+    ps.add("hil.enabled", &hil, false, "be the ship's devices: NMEA/AIS on UDP instead of nav/own_state, sensors/*; "
+           "orders from the actuator wire instead of control/actuators");
+    ps.add("hil.host", &hil_host, "127.0.0.1", "IPv4 address of gpsd and the bridge (the devices' wires)");
+    ps.add("hil.gnss_port", &gnss_port, 10110, "-", 1, 65535, "UDP port (gpsd) for the GNSS receiver's RMC/GGA/VTG");
+    ps.add("hil.ais_port", &ais_port, 10111, "-", 1, 65535, "UDP port (gpsd) for the AIS transponder's !AIVDM/!AIVDO");
+    ps.add("hil.gyro_port", &gyro_port, 10112, "-", 1, 65535, "UDP port (bridge) for the gyro compass's $HEHDT/$HEROT");
+    ps.add("hil.feedback_port", &feedback_port, 10113, "-", 1, 65535, "UDP port (bridge) for RSA/RPM feedback");
+    ps.add("hil.orders_port", &orders_port, 10114, "-", 1, 65535, "UDP port this simulator takes ROR/PRC orders on");
+    ps.add("hil.gnss_period", &gnss_period, 0.2, "s", 0.05, 10.0, "GNSS output interval (simulated time)");
+    ps.add("hil.order_timeout", &order_timeout, 2.0, "s", 0.1, 60.0,
+           "actuator watchdog: no order this long puts the rudder amidships (engine order held)");
   }
 };
 
@@ -81,9 +103,10 @@ int main(int argc, char** argv) {
     auto& clock_w = c.publisher<msg::Clock>(topics::kClock, dds::QosProfile::command(16));
     // Reliable state writers (deterministic()): the components on simulated time read them reliably.
     const auto state = [](double deadline_s) { return dds::QosProfile::state(deadline_s).deterministic(); };
-    auto& nav_w = c.publisher<msg::NavState>(topics::kOwnState, state(3 * cfg.nav.period * wall_per_sim));
-    auto& ais_w = c.publisher<msg::AisReport>(topics::kAis, dds::QosProfile::command(64));
-    auto& radar_w = c.publisher<msg::RadarScan>(topics::kRadar, state(3 * cfg.radar.period * wall_per_sim));
+    // In HIL mode the autonomy's inputs come from the devices' wires: no writers for them at all.
+    auto* nav_w = p.hil ? nullptr : &c.publisher<msg::NavState>(topics::kOwnState, state(3 * cfg.nav.period * wall_per_sim));
+    auto* ais_w = p.hil ? nullptr : &c.publisher<msg::AisReport>(topics::kAis, dds::QosProfile::command(64));
+    auto* radar_w = p.hil ? nullptr : &c.publisher<msg::RadarScan>(topics::kRadar, state(3 * cfg.radar.period * wall_per_sim));
     auto& truth_w = c.publisher<msg::GroundTruth>(topics::kTruth, state(3 * p.truth_period * wall_per_sim));
 
     struct State {
@@ -102,29 +125,94 @@ int main(int argc, char** argv) {
     auto header = [st, world] { return msg::Header{world->time_ns(), "ship_simulator", st->seq++}; };
 
     // Sensor samples of the current step, then its Clock (a participant's tick sees its data).
-    auto publish_step = [&, st, world, barrier, header, lockstep] {
-      const sim::SensorOutputs out = world->sense();
+    // Hardware in the loop: the devices' wires instead of the sensor topics.
+    struct Hil {
+      std::unique_ptr<sim::Devices> dev;
+      std::unique_ptr<mpgc::net::UdpSender> gnss, ais, gyro, feedback;
+      std::unique_ptr<mpgc::net::UdpReceiver> orders;
+      sim::DeviceOrders last;
+      int64_t last_order_ns = 0, next_gnss_ns = 0, next_own_ais_ns = 0;
+      bool watchdog = false;
+      std::map<std::string, uint64_t> seen;
+    };
+    auto hil = std::make_shared<Hil>();
+    if (p.hil) {
+      const auto utc0 = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch());
+      hil->dev = std::make_unique<sim::Devices>(world->frame(), static_cast<int64_t>(utc0.count()) * 1'000'000'000);
+      hil->gnss = std::make_unique<mpgc::net::UdpSender>(p.hil_host, p.gnss_port);
+      hil->ais = std::make_unique<mpgc::net::UdpSender>(p.hil_host, p.ais_port);
+      hil->gyro = std::make_unique<mpgc::net::UdpSender>(p.hil_host, p.gyro_port);
+      hil->feedback = std::make_unique<mpgc::net::UdpSender>(p.hil_host, p.feedback_port);
+      hil->orders = std::make_unique<mpgc::net::UdpReceiver>(p.hil_host, p.orders_port);
+      c.log().info("hardware in the loop: GNSS -> {}:{}, AIS -> :{}, gyro -> :{}, feedback -> :{}, orders <- :{}",
+                   p.hil_host, p.gnss_port, p.ais_port, p.gyro_port, p.feedback_port, p.orders_port);
+    }
+    // Orders from the wire, and the steering gear's watchdog: without orders the rudder goes amidships.
+    auto take_orders = [&, st, world, hil] {
+      hil->dev->on_order_lines(hil->orders->receive_lines(), world->own().max_rudder(), world->own().max_rpm(), &hil->last);
+      const int64_t t = world->time_ns();
+      if (hil->dev->counters().count("orders.ror") && hil->dev->counters().at("orders.ror") != hil->seen["orders.ror"])
+        hil->last_order_ns = t;
+      for (const auto& [k, v] : hil->dev->counters())
+        if (v > hil->seen[k]) c.count("hil." + k, v - hil->seen[k]), hil->seen[k] = v;
+      if (hil->last.rudder_seen) st->cmd.rudder = hil->last.rudder;
+      if (hil->last.rpm_seen) st->cmd.rpm = hil->last.rpm;
+      const bool silent = hil->last.rudder_seen && t - hil->last_order_ns > static_cast<int64_t>(p.order_timeout * 1e9);
+      if (silent) st->cmd.rudder = 0.0;
+      if (silent != hil->watchdog) {
+        hil->watchdog = silent;
+        if (silent) c.log().warn("actuator watchdog: no order for {} s, rudder amidships", p.order_timeout);
+        c.set_health(silent ? msg::HealthState::HEALTH_DEGRADED : msg::HealthState::HEALTH_OK,
+                     silent ? "actuator watchdog: no orders, rudder amidships" : "");
+        if (silent) c.count("hil.watchdog_trips");
+      }
+    };
+    auto hil_outputs = [&, world, hil](const sim::SensorOutputs& out) {
       const int64_t t = world->time_ns();
       const sim::ShipState& s = world->own().state();
       if (out.nav) {
+        hil->gyro->send(hil->dev->gyro(*out.nav));
+        hil->feedback->send(hil->dev->feedback(s.rudder, s.rpm));
+        if (t >= hil->next_gnss_ns) {
+          hil->gnss->send(hil->dev->gnss(*out.nav, t));
+          hil->next_gnss_ns = t + static_cast<int64_t>(std::llround(p.gnss_period * 1e9));
+        }
+        if (t >= hil->next_own_ais_ns) {  // the own ship's transponder: class A underway, 10 s
+          for (const auto& l : hil->dev->ais_own(cfg.own_mmsi, *out.nav, t)) hil->ais->send(l);
+          hil->next_own_ais_ns = t + 10'000'000'000;
+        }
+      }
+      for (const auto& a : out.ais) {
+        const auto& tc = *std::find_if(cfg.targets.begin(), cfg.targets.end(), [&](const auto& x) { return x.mmsi == a.mmsi; });
+        for (const auto& l : hil->dev->ais_target(a, tc, t)) hil->ais->send(l);
+      }
+    };
+
+    auto publish_step = [&, st, world, barrier, header, lockstep, hil_outputs] {
+      const sim::SensorOutputs out = world->sense();
+      const int64_t t = world->time_ns();
+      const sim::ShipState& s = world->own().state();
+      if (p.hil) {
+        hil_outputs(out);
+      } else if (out.nav) {
         const auto& n = *out.nav;
         const auto ll = world->frame().to_latlon({n.x, n.y});
         msg::NavState m{header(), n.x, n.y, ll.lat, ll.lon, n.heading, n.cog, n.sog, s.u, s.v, n.rot, s.rudder, s.rpm,
                         msg::NAV_POSITION_VALID | msg::NAV_HEADING_VALID | msg::NAV_VELOCITY_VALID |
                             msg::NAV_RATE_VALID | msg::NAV_ACTUATORS_VALID};
-        nav_w.write(m);
+        nav_w->write(m);
       }
-      for (const auto& a : out.ais) {
+      if (!p.hil) for (const auto& a : out.ais) {
         const auto ll = world->frame().to_latlon({a.x, a.y});
         const auto& tc = *std::find_if(cfg.targets.begin(), cfg.targets.end(), [&](const auto& x) { return x.mmsi == a.mmsi; });
-        ais_w.write(msg::AisReport{header(), a.mmsi, msg::AisClass::AIS_CLASS_A, ll.lat, ll.lon, a.cog, a.sog, a.heading,
-                                   a.rot, a.nav_status, a.report_time_ns, tc.length, tc.beam});
+        ais_w->write(msg::AisReport{header(), a.mmsi, msg::AisClass::AIS_CLASS_A, ll.lat, ll.lon, a.cog, a.sog, a.heading,
+                                   a.rot, a.nav_status, a.report_time_ns, tc.length, tc.beam, tc.name, 70});
       }
-      if (out.radar) {
+      if (out.radar && !p.hil) {
         msg::RadarScan r{header(), out.radar->antenna_x, out.radar->antenna_y, out.radar->max_range, {}};
         for (const auto& k : out.radar->contacts)
           r.contacts.push_back({k.range, k.bearing, cfg.radar.sigma_range, cfg.radar.sigma_bearing});
-        radar_w.write(r);
+        radar_w->write(r);
       }
       if (t >= st->next_truth_ns) {
         msg::GroundTruth g{header(), to_msg(world->own_truth()), {}};
@@ -139,7 +227,7 @@ int main(int argc, char** argv) {
     };
 
     auto finished = [&, world] { return p.duration > 0.0 && world->time_ns() >= static_cast<int64_t>(std::llround(p.duration * 1e9)); };
-    auto advance = [&, st, world, publish_step, finished] {
+    auto advance = [&, st, world, publish_step, finished, take_orders] {
       if (!st->started) {
         st->started = true;
         st->start_wall = c.now_ns();
@@ -154,12 +242,13 @@ int main(int argc, char** argv) {
         c.stop(0);
         return;
       }
+      if (p.hil) take_orders();
       world->step(st->cmd);
       c.count("steps");
       publish_step();
     };
 
-    c.subscribe<msg::ActuatorCommand>(
+    if (!p.hil) c.subscribe<msg::ActuatorCommand>(
         topics::kActuators, dds::QosProfile::command(16),
         [st, world](const msg::ActuatorCommand& a) { st->cmd = {a.rudder, a.propeller_rpm}; },
         [world](const msg::ActuatorCommand& a) { return check_command(a, world->own()); });
