@@ -122,12 +122,12 @@ NavOutput NavFusion::state(int64_t now) const {
     if (last_any_fix_t_ < 0) add("no fix yet");
     else if (fix_mode_ < 2) add("no fix");
     else if (fix_mode_ == 2 && p_.require_3d) add("2-D fix");
-    else add("position stale (" + fmt1(age_s(fix_t_, now)) + " s)");
+    else add("position stale");  // no ages here: health repeats this text only when it changes
   }
   o.velocity_valid = o.position_valid && fresh(sog_.t, now, p_.fix_timeout) && fresh(cog_.t, now, p_.fix_timeout);
   if (o.position_valid && !o.velocity_valid) add("no SOG/COG");
   o.heading_valid = fresh(heading_.t, now, p_.heading_timeout);
-  if (!o.heading_valid) add(heading_.t < 0 ? "no heading yet" : "heading stale (" + fmt1(age_s(heading_.t, now)) + " s)");
+  if (!o.heading_valid) add(heading_.t < 0 ? "no heading yet" : "heading stale");
   o.rate_valid = fresh(rot_.t, now, p_.heading_timeout);
   if (!o.rate_valid) add(rot_.t < 0 ? "no rate of turn yet" : "rate of turn stale");
   o.actuators_valid = fresh(rudder_.t, now, p_.feedback_timeout) && fresh(rpm_.t, now, p_.feedback_timeout);
