@@ -18,7 +18,7 @@ int clamp_int(int v, int lo, int hi) { return std::min(std::max(v, lo), hi); }
 int rot_ais(double rot_deg_min) {
   if (std::isnan(rot_deg_min)) return -128;
   if (std::isinf(rot_deg_min)) return rot_deg_min > 0 ? 127 : -127;
-  const int v = std::min(126, static_cast<int>(std::lround(4.733 * std::sqrt(std::fabs(rot_deg_min)))));
+  const int v = static_cast<int>(std::lround(std::min(126.0, 4.733 * std::sqrt(std::fabs(rot_deg_min)))));
   return rot_deg_min < 0 ? -v : v;
 }
 
@@ -120,7 +120,7 @@ Payload encode(const StaticVoyage& m) {
   p.put_uint(60, 6);  // ETA minute n/a
   uint32_t draught = 0;  // [0.1 m] 0 = n/a, 255 = 25.5 m or more
   if (std::isfinite(m.draught_m) && m.draught_m > 0.0)
-    draught = static_cast<uint32_t>(std::min(255L, std::lround(m.draught_m * 10.0)));
+    draught = static_cast<uint32_t>(std::lround(std::min(255.0, m.draught_m * 10.0)));
   p.put_uint(draught, 8);
   p.put_text(m.destination, 20);
   p.put_uint(0, 1);  // DTE available

@@ -11,9 +11,13 @@ namespace {
 
 // ---- formatting: integers only, so no locale can turn '.' into ',' ----
 
-// `v` rounded to `decimals` places, '-' for negatives, "" when not finite.
+// A value a sentence field can carry: finite, and small enough for the integer formatting below
+// (nothing on a ship comes near 1e12 in the sentences' units).
+bool usable(double v) { return std::isfinite(v) && std::fabs(v) < 1e12; }
+
+// `v` rounded to `decimals` places, '-' for negatives, "" when not usable.
 std::string fixed(double v, int decimals) {
-  if (!std::isfinite(v)) return "";
+  if (!usable(v)) return "";
   double scale = 1.0;
   for (int i = 0; i < decimals; ++i) scale *= 10.0;
   const long long q = std::llround(std::fabs(v) * scale);
@@ -278,7 +282,7 @@ std::string vtg(std::string_view talker, const FixData& f) {
   const double kmh = f.sog_kn * 1.852;  // [km/h]
   return join(talker, "VTG",
               angle360(f.cog_deg, 2) + ",T,,M," + fixed(f.sog_kn, 2) + ",N," + fixed(kmh, 2) + ",K," +
-                  (std::isfinite(f.sog_kn) ? "A" : "N"));
+                  (usable(f.sog_kn) ? "A" : "N"));
 }
 
 std::string hdt(std::string_view talker, double heading_deg) {
@@ -291,29 +295,29 @@ std::string ths(std::string_view talker, double heading_deg, char mode) {
 }
 
 std::string rot(std::string_view talker, double rot_deg_min, bool valid) {
-  valid = valid && std::isfinite(rot_deg_min);
+  valid = valid && usable(rot_deg_min);
   return join(talker, "ROT", fixed(rot_deg_min, 2) + (valid ? ",A" : ",V"));
 }
 
 std::string ror(std::string_view talker, double rudder_order_deg, char source) {
   // Starboard (or single) rudder order; port rudder empty and invalid.
-  const bool ok = std::isfinite(rudder_order_deg);
+  const bool ok = usable(rudder_order_deg);
   return join(talker, "ROR", fixed(rudder_order_deg, 2) + (ok ? ",A" : ",V") + ",,V," + source);
 }
 
 std::string prc(std::string_view talker, double rpm_demand, int shaft) {
   // Lever demand empty/invalid, rpm demand in mode R (rpm), pitch empty/invalid, location B (bridge).
-  const bool ok = std::isfinite(rpm_demand);
+  const bool ok = usable(rpm_demand);
   return join(talker, "PRC", ",V," + fixed(rpm_demand, 2) + (ok ? ",R" : ",V") + ",,V,B," + std::to_string(shaft));
 }
 
 std::string rsa(std::string_view talker, double rudder_deg) {
-  const bool ok = std::isfinite(rudder_deg);
+  const bool ok = usable(rudder_deg);
   return join(talker, "RSA", fixed(rudder_deg, 2) + (ok ? ",A" : ",V") + ",,V");
 }
 
 std::string rpm(std::string_view talker, double rpm_value, int shaft, char source) {
-  const bool ok = std::isfinite(rpm_value);
+  const bool ok = usable(rpm_value);
   return join(talker, "RPM",
               std::string(1, source) + ',' + std::to_string(shaft) + ',' + fixed(rpm_value, 2) + (ok ? ",,A" : ",,V"));
 }
