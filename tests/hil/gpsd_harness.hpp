@@ -74,6 +74,9 @@ inline bool port_bound(int port, bool tcp) {
 inline bool port_free(int port, bool tcp) {
   const int fd = socket(AF_INET, tcp ? SOCK_STREAM : SOCK_DGRAM, 0);
   if (fd < 0) return false;
+  // As gpsd binds: TIME_WAIT left by an earlier replay on this port does not make it taken.
+  const int one = 1;
+  setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_port = htons(static_cast<uint16_t>(port));
