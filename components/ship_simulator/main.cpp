@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
       }
     };
 
-    auto publish_step = [&, st, world, barrier, header, lockstep, hil_outputs] {
+    auto publish_step = [&, st, world, barrier, header, lockstep, hil_outputs, nav_w, ais_w, radar_w] {
       const sim::SensorOutputs out = world->sense();
       const int64_t t = world->time_ns();
       const sim::ShipState& s = world->own().state();
