@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -124,6 +125,13 @@ std::string launch_file(const sr::Scenario& s, const std::string& world_path, co
     b["origin.source"] = "param";
     b["origin.lat"] = std::to_string(s.origin_lat_deg);
     b["origin.lon"] = std::to_string(s.origin_lon_deg);
+    // Timeouts run on simulated time but the jitter is the wall clock's (gpsd, UDP, a loaded
+    // machine): at 20x a 60 ms stall is 1.2 s simulated. Widen them to 0.15 s of wall time.
+    const double f = o.realtime_factor > 0 ? o.realtime_factor : kHilFactor;
+    const std::string jitter = std::to_string(std::max(1.0, 0.15 * f));
+    b["nav.heading_timeout"] = jitter;
+    b["actuators.command_timeout"] = jitter;
+    sim["hil.order_timeout"] = std::to_string(std::max(2.0, 0.2 * f));
     const YAML::Node mmsi = s.world["own_ship"]["mmsi"];
     b["own.mmsi"] = std::to_string(mmsi && mmsi.as<uint32_t>() != 0 ? mmsi.as<uint32_t>() : kHilOwnMmsi);
   }
