@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
       }
     };
 
-    c.every(p.period, [&, st, nav, ais, gyro, feedback, orders, apply_lines] {
+    c.every(p.period, [&, st, nav, ais, gyro, feedback, orders, apply_lines, lim] {
       const int64_t now = c.now_ns();
       // gpsd: (re)connect, then take everything it has sent.
       if (!st->gpsd && now >= st->next_connect_ns) {

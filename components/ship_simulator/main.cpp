@@ -42,6 +42,7 @@ struct Params {
   int gnss_port = 0, ais_port = 0, gyro_port = 0, feedback_port = 0, orders_port = 0;
   double gnss_period = 0.2;     // [s] simulated
   double order_timeout = 2.0;   // [s] simulated: the actuator watchdog
+  bool hil_radar = false;       // keep publishing sensors/radar in HIL (a radar with its own DDS link)
 
   void declare(rt::ParamSet& ps) {
     ps.add("world.file", &world_file, "", "world YAML file (own ship, targets, sensors; README.md)");
@@ -62,6 +63,7 @@ struct Params {
     ps.add("hil.gyro_port", &gyro_port, 10112, "-", 1, 65535, "UDP port (bridge) for the gyro compass's $HEHDT/$HEROT");
     ps.add("hil.feedback_port", &feedback_port, 10113, "-", 1, 65535, "UDP port (bridge) for RSA/RPM feedback");
     ps.add("hil.orders_port", &orders_port, 10114, "-", 1, 65535, "UDP port this simulator takes ROR/PRC orders on");
+    ps.add("hil.radar", &hil_radar, false, "in HIL, still publish sensors/radar (a radar with its own DDS link)");
     ps.add("hil.gnss_period", &gnss_period, 0.2, "s", 0.05, 10.0, "GNSS output interval (simulated time)");
     ps.add("hil.order_timeout", &order_timeout, 2.0, "s", 0.1, 60.0,
            "actuator watchdog: no order this long puts the rudder amidships (engine order held)");
@@ -106,7 +108,7 @@ int main(int argc, char** argv) {
     // In HIL mode the autonomy's inputs come from the devices' wires: no writers for them at all.
     auto* nav_w = p.hil ? nullptr : &c.publisher<msg::NavState>(topics::kOwnState, state(3 * cfg.nav.period * wall_per_sim));
     auto* ais_w = p.hil ? nullptr : &c.publisher<msg::AisReport>(topics::kAis, dds::QosProfile::command(64));
-    auto* radar_w = p.hil ? nullptr : &c.publisher<msg::RadarScan>(topics::kRadar, state(3 * cfg.radar.period * wall_per_sim));
+    auto* radar_w = p.hil && !p.hil_radar ? nullptr : &c.publisher<msg::RadarScan>(topics::kRadar, state(3 * cfg.radar.period * wall_per_sim));
     auto& truth_w = c.publisher<msg::GroundTruth>(topics::kTruth, state(3 * p.truth_period * wall_per_sim));
 
     struct State {
@@ -208,7 +210,7 @@ int main(int argc, char** argv) {
         ais_w->write(msg::AisReport{header(), a.mmsi, msg::AisClass::AIS_CLASS_A, ll.lat, ll.lon, a.cog, a.sog, a.heading,
                                    a.rot, a.nav_status, a.report_time_ns, tc.length, tc.beam, tc.name, 70});
       }
-      if (out.radar && !p.hil) {
+      if (out.radar && radar_w != nullptr) {
         msg::RadarScan r{header(), out.radar->antenna_x, out.radar->antenna_y, out.radar->max_range, {}};
         for (const auto& k : out.radar->contacts)
           r.contacts.push_back({k.range, k.bearing, cfg.radar.sigma_range, cfg.radar.sigma_bearing});

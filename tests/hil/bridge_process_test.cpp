@@ -16,7 +16,9 @@
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/sensors.hpp"
 #include "mpgc/msg/tracks.hpp"
+#include "mpgc/msg/control.hpp"
 #include "mpgc/net/udp.hpp"
+#include "mpgc/nmea/nmea0183.hpp"
 #include "mpgc/testing.hpp"
 #include "mpgc/topics.hpp"
 
@@ -111,4 +113,86 @@ TEST(ShipBridgeProcess, SaabR4ThroughGpsfakeBridgeAndSituationalAwareness) {
   for (uint32_t m : track_mmsi) EXPECT_TRUE(ais_mmsi.count(m)) << "track MMSI " << m << " never reported by the bridge";
   EXPECT_TRUE(bridge.running()) << "the bridge died";
   EXPECT_TRUE(sa.running()) << "situational_awareness died";
+}
+
+// The actuator wire of the real bridge process: control/actuators in, ROR/PRC orders out on UDP
+// (saturated at the limits, never dropped), RSA/RPM feedback in, published in nav/own_state; the
+// orders stop when the commands do (the steering gear's watchdog then takes over).
+TEST(ShipBridgeProcess, ActuatorWireOrdersSaturationFeedbackAndTimeout) {
+  const int domain = mpgc::testing::unique_domain();
+  const int orders_port = free_udp_port();
+  mpgc::net::UdpReceiver orders("127.0.0.1", orders_port);
+  int feedback_port = orders_port + 1;
+  while (!mpgc::hil::port_free(feedback_port, false)) ++feedback_port;
+  const std::string bin = mpgc::testing::bin_dir();
+  // No gpsd at all: the bridge keeps retrying it (and says so) while the actuator wire works.
+  mpgc::testing::Process bridge({bin + "/mpgc_ship_bridge", "--domain", std::to_string(domain), "--set", "gpsd.port=1",
+                                 "--set", "actuators.port=" + std::to_string(orders_port), "--set",
+                                 "actuators.feedback_port=" + std::to_string(feedback_port), "--set",
+                                 "actuators.command_timeout=1", "--set", "actuators.max_rudder=35", "--set",
+                                 "actuators.max_rpm=120", "--log-level", "error"});
+  dds::Participant part(static_cast<uint32_t>(domain));
+  dds::Topic<msg::ActuatorCommand> cmd_t(part, mpgc::topics::kActuators);
+  dds::Topic<msg::NavState> nav_t(part, mpgc::topics::kOwnState);
+  dds::Writer<msg::ActuatorCommand> cmd(part, cmd_t, dds::QosProfile::command(16));
+  dds::Reader<msg::NavState> nav(part, nav_t, dds::QosProfile::state());
+  mpgc::net::UdpSender feedback("127.0.0.1", feedback_port);
+
+  // Sends `c` for a while and returns the last ROR and PRC values seen on the wire.
+  const auto order_for = [&](double rudder, double rpm, double* ror, double* prc) {
+    *ror = *prc = std::nan("");
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    int seen = 0;
+    while (std::chrono::steady_clock::now() < end && seen < 5) {
+      msg::ActuatorCommand a{};
+      a.header.stamp_ns = dds_time();
+      a.rudder = rudder;
+      a.propeller_rpm = rpm;
+      cmd.write(a);
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      for (const auto& l : orders.receive_lines()) {
+        std::string why;
+        const auto s = mpgc::nmea::parse(l, &why);
+        ASSERT_TRUE(s) << l << ": " << why;
+        if (s->type == "ROR") *ror = mpgc::nmea::parse_ror(*s, &why)->rudder_deg, ++seen;
+        if (s->type == "PRC") *prc = mpgc::nmea::parse_prc(*s, &why)->rpm;
+      }
+    }
+  };
+  double ror = 0, prc = 0;
+  order_for(0.2, 80.0, &ror, &prc);
+  EXPECT_NEAR(ror, geo::rad2deg(0.2), 0.005);
+  EXPECT_NEAR(prc, 80.0, 0.005);
+  order_for(-0.2, 80.0, &ror, &prc);
+  EXPECT_NEAR(ror, -geo::rad2deg(0.2), 0.005) << "negative (port) rudder";
+  order_for(1.0, 200.0, &ror, &prc);  // beyond both limits: saturated, not dropped
+  EXPECT_NEAR(ror, 35.0, 0.005);
+  EXPECT_NEAR(prc, 120.0, 0.005);
+  order_for(-0.7, -5.0, &ror, &prc);
+  EXPECT_NEAR(ror, -35.0, 0.005);
+  EXPECT_NEAR(prc, 0.0, 0.005);
+
+  // Commands stop: within command_timeout (+ a margin) the orders stop too.
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  orders.receive_lines();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  EXPECT_TRUE(orders.receive_lines().empty()) << "orders still sent 2.5 s after the last command";
+
+  // Feedback: RSA and RPM become the NavState's rudder and rpm with NAV_ACTUATORS_VALID.
+  bool got = false;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!got && std::chrono::steady_clock::now() < end) {
+    feedback.send(mpgc::nmea::rsa("ER", -12.5) + mpgc::nmea::rpm("ER", 77.25));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    for (const auto& s : nav.take()) {
+      if (!(s.value.valid_mask & msg::NAV_ACTUATORS_VALID)) continue;
+      EXPECT_NEAR(geo::rad2deg(s.value.rudder), -12.5, 1e-9);
+      EXPECT_NEAR(s.value.propeller_rpm, 77.25, 1e-9);
+      EXPECT_EQ(s.value.valid_mask & msg::NAV_POSITION_VALID, 0u) << "no gpsd, yet a valid position";
+      EXPECT_TRUE(std::isnan(s.value.x));
+      got = true;
+    }
+  }
+  EXPECT_TRUE(got) << "no NavState with the actuator feedback";
+  EXPECT_TRUE(bridge.running());
 }
