@@ -1,5 +1,5 @@
 // NMEA 0183 framing/parser/encoders/decoders and the AIS encoder, against real logs (gpsd, pyais)
-// and a test-local AIS bit decoder.
+// and an AIS bit reader independent of the encoder (tests/support, mpgc/testing_ais.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +13,7 @@
 #include "mpgc/nmea/ais.hpp"
 #include "mpgc/nmea/nmea0183.hpp"
 #include "mpgc/testing.hpp"
+#include "mpgc/testing_ais.hpp"
 
 using namespace mpgc;
 
@@ -67,77 +68,30 @@ nmea::Sentence must_parse(const std::string& line) {
   return s.value_or(nmea::Sentence{});
 }
 
-// ---- test-local AIS decoder: armoured payload -> bits -> fields ----
-struct Bits {
-  std::vector<int> b;
-  Bits(const std::string& payload, int fill) {
-    for (char ch : payload) {
-      int v = ch - 48;
-      if (v > 40) v -= 8;
-      for (int i = 5; i >= 0; --i) b.push_back((v >> i) & 1);
-    }
-    b.resize(b.size() - fill);
-  }
-  uint32_t u(int start, int n) const {
-    uint32_t v = 0;
-    for (int i = 0; i < n; ++i) v = (v << 1) | static_cast<uint32_t>(b.at(start + i));
-    return v;
-  }
-  int32_t s(int start, int n) const {
-    const uint32_t v = u(start, n);
-    return (v >> (n - 1)) ? static_cast<int32_t>(v) - (1 << n) : static_cast<int32_t>(v);
-  }
-  std::string text(int start, int chars) const {
-    std::string r;
-    for (int i = 0; i < chars; ++i) {
-      const int v = static_cast<int>(u(start + 6 * i, 6));
-      r += static_cast<char>(v < 32 ? v + 64 : v);
-    }
-    return r;
-  }
-};
+// ---- AIS payloads read back by testing_ais.hpp, independently of the encoder ----
 
 // Payload and fill of one or more framed !AIVDM sentences (checked by the parser).
-Bits bits_of(const std::vector<std::string>& sentences) {
+mpgc::testing::AisBits bits_of(const std::vector<std::string>& sentences) {
   std::string payload;
   int fill = 0;
   for (const auto& l : sentences) {
     const auto s = must_parse(l);
     EXPECT_EQ(s.type, "VDM");
-    if (s.fields.size() != 6) return Bits("", 0);
+    if (s.fields.size() != 6) return mpgc::testing::AisBits("", 0);
     payload += s.fields[4];
     fill = std::atoi(s.fields[5].c_str());
   }
-  return Bits(payload, fill);
+  return mpgc::testing::AisBits(payload, fill);
 }
 
-struct Type1 {
-  uint32_t type, repeat, mmsi, status;
-  int32_t rot;
-  uint32_t sog, acc;
-  int32_t lon, lat;
-  uint32_t cog, hdg, second, maneuver, spare, raim, radio;
-};
-Type1 decode1(const Bits& b) {
-  EXPECT_EQ(b.b.size(), 168u);
-  return {b.u(0, 6),    b.u(6, 2),    b.u(8, 30),   b.u(38, 4),   b.s(42, 8),   b.u(50, 10),
-          b.u(60, 1),   b.s(61, 28),  b.s(89, 27),  b.u(116, 12), b.u(128, 9),  b.u(137, 6),
-          b.u(143, 2),  b.u(145, 3),  b.u(148, 1),  b.u(149, 19)};
+mpgc::testing::AisType1 decode1(const mpgc::testing::AisBits& b) {
+  EXPECT_EQ(b.size(), 168u);
+  return mpgc::testing::ais_type1(b);
 }
 
-struct Type5 {
-  uint32_t type, mmsi, version, imo;
-  std::string callsign, name;
-  uint32_t ship_type, bow, stern, port, stbd, epfd, month, day, hour, minute, draught;
-  std::string destination;
-  uint32_t dte, spare;
-};
-Type5 decode5(const Bits& b) {
-  EXPECT_EQ(b.b.size(), 424u);
-  return {b.u(0, 6),    b.u(8, 30),   b.u(38, 2),   b.u(40, 30),  b.text(70, 7),   b.text(112, 20),
-          b.u(232, 8),  b.u(240, 9),  b.u(249, 9),  b.u(258, 6),  b.u(264, 6),   b.u(270, 4),
-          b.u(274, 4),  b.u(278, 5),  b.u(283, 5),  b.u(288, 6),  b.u(294, 8),   b.text(302, 20),
-          b.u(422, 1),  b.u(423, 1)};
+mpgc::testing::AisType5 decode5(const mpgc::testing::AisBits& b) {
+  EXPECT_EQ(b.size(), 424u);
+  return mpgc::testing::ais_type5(b);
 }
 
 std::string strip_crlf(std::string s) {
@@ -663,18 +617,8 @@ TEST(AisEncode, RealType5FromSample) {
   // destination '@'-padded (empty).
   const std::string real1 = "542M92h00001@<7;?G0PD4i@R0<tqA8tj37>220o0h:2240Ht50000000000";
   const std::string real2 = "00000000000";
-  ais::StaticVoyage v;
-  v.mmsi = 271010059;
-  v.imo = 0;
-  v.callsign = "TCA2350";
-  v.name = "HEALTH CONTROL 13   ";
-  v.ship_type = 55;
-  v.to_bow = 6;
-  v.to_stern = 10;
-  v.to_port = 2;
-  v.to_starboard = 2;
-  v.draught_m = 2.0;
-  v.destination = "";
+  // mmsi, imo, callsign, name, ship type, to bow/stern/port/starboard [m], draught [m], destination
+  const ais::StaticVoyage v{271010059, 0, "TCA2350", "HEALTH CONTROL 13   ", 55, 6, 10, 2, 2, 2.0, ""};
   const auto p = ais::encode(v);
   EXPECT_EQ(p.bits(), 424);
   int fill = -1;
@@ -690,18 +634,7 @@ TEST(AisEncode, RealType5FromSample) {
   // field compared through the local decoder against the real payload's.
   const auto real = decode5(bits_of({"!AIVDM,2,1,1,A,55?MbV02;H;s<HtKR20EHE:0@T4@Dn2222222216L961O5Gf0NSQEp6ClRp8,0*1C",
                                      "!AIVDM,2,2,1,A,88888888880,2*25"}));
-  ais::StaticVoyage e;
-  e.mmsi = 351759000;
-  e.imo = 9134270;
-  e.callsign = "3FOF8";
-  e.name = "EVER DIADEM";
-  e.ship_type = 70;
-  e.to_bow = 225;
-  e.to_stern = 70;
-  e.to_port = 1;
-  e.to_starboard = 31;
-  e.draught_m = 12.2;
-  e.destination = "NEW YORK";
+  const ais::StaticVoyage e{351759000, 9134270, "3FOF8", "EVER DIADEM", 70, 225, 70, 1, 31, 12.2, "NEW YORK"};
   const auto ours_s = ais::sentences(ais::encode(e), 'A', 1);
   ASSERT_EQ(ours_s.size(), 2u);
   const auto ours = decode5(bits_of(ours_s));

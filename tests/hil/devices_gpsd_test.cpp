@@ -7,17 +7,11 @@
 // (that is why the bridge reads the gyro directly), while a control $GPHDT does.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <deque>
 #include <map>
 #include <string>
@@ -28,6 +22,7 @@
 #include "mpgc/nmea/nmea0183.hpp"
 #include "mpgc/ship_simulator/devices.hpp"
 #include "mpgc/ship_simulator/world.hpp"
+#include "mpgc/testing_ais.hpp"
 
 using namespace mpgc;
 namespace sim = mpgc::ship_simulator;
@@ -39,48 +34,9 @@ constexpr int64_t kStepNs = 100'000'000;   // 0.1 s
 constexpr double kRunS = 120.0;
 constexpr int kPaceMs = 2;                 // between datagrams, so gpsd keeps up
 
-class UdpSender {
- public:
-  UdpSender() : fd_(socket(AF_INET, SOCK_DGRAM, 0)) {}
-  ~UdpSender() {
-    if (fd_ >= 0) close(fd_);
-  }
-  // One datagram to 127.0.0.1:port (never anywhere else).
-  bool send(int port, const std::string& data) const {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(static_cast<uint16_t>(port));
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    return sendto(fd_, data.data(), data.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof a) ==
-           static_cast<ssize_t>(data.size());
-  }
-
- private:
-  int fd_;
-};
-
-// gpsd's TPV time for a UTC instant: "YYYY-MM-DDTHH:MM:SS.mmmZ".
-std::string iso_ms(int64_t ns) {
-  const time_t s = static_cast<time_t>(ns / 1000000000);
-  std::tm tm{};
-  gmtime_r(&s, &tm);
-  char buf[80];
-  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
-                tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ns / 1000000 % 1000));
-  return buf;
-}
-
-double angle_diff(double a, double b) { return std::fabs(std::remainder(a - b, 360.0)); }
-
 double deg360(double rad) {
   const double d = std::fmod(geo::rad2deg(rad), 360.0);
   return d < 0 ? d + 360.0 : d;
-}
-
-// ROT_AIS computed here independently: round(4.733 sqrt|rot|), signed, +-126; -128 n/a.
-double want_turn(double rot_deg_min) {
-  if (std::isnan(rot_deg_min)) return -128;
-  return std::copysign(std::min(126.0, std::round(4.733 * std::sqrt(std::fabs(rot_deg_min)))), rot_deg_min);
 }
 
 // Three targets: a slow one (10 s AIS interval), a fast one that turns at 40 s (2 s), one at 16 kn (6 s).
@@ -117,11 +73,6 @@ struct SentStatic {
   int length, beam;
 };
 
-#define START_GPSD(var, n_udp)                                                                        \
-  ASSERT_FALSE(hil::find_exe("gpsd").empty()) << "gpsd is not installed: apt-get install gpsd gpsd-clients"; \
-  auto var = hil::GpsdProcess::udp(n_udp);                                                            \
-  ASSERT_TRUE(var.ok()) << "gpsd did not start: " << var.error()
-
 }  // namespace
 
 TEST(HilDevicesGpsd, SimulatorOutputDecodedByGpsdGivesBackTheTruth) {
@@ -130,11 +81,8 @@ TEST(HilDevicesGpsd, SimulatorOutputDecodedByGpsdGivesBackTheTruth) {
   ASSERT_EQ(cfg.ais.sigma_position, 0.0);
   sim::World world(cfg, kStepNs);
 
-  START_GPSD(gpsd, 2);
-  hil::GpsdWatch watch(gpsd.port());
-  ASSERT_TRUE(watch.ok()) << watch.error();
-  ASSERT_TRUE(watch.await_watch(5000)) << "gpsd did not answer ?WATCH";
-  UdpSender udp;
+  MPGC_HIL_GPSD_WITH_WATCH(gpsd, watch, 2);
+  hil::UdpSender udp;
 
   // What gpsd says, as it arrives (read while pacing the sends).
   std::map<std::string, std::string> tpv_by_time;  // the last (most complete) TPV of each time
@@ -198,7 +146,7 @@ TEST(HilDevicesGpsd, SimulatorOutputDecodedByGpsdGivesBackTheTruth) {
           std::fabs(n.rot - tr.r) > 1e-15)
         ++truth_mismatch;
       const geo::LatLon ll = world.frame().to_latlon({n.x, n.y});
-      sent_fix[iso_ms(utc0 + t)] = {geo::rad2deg(ll.lat), geo::rad2deg(ll.lon), n.sog / kKnot, deg360(n.cog)};
+      sent_fix[hil::iso_ms(utc0 + t)] = {geo::rad2deg(ll.lat), geo::rad2deg(ll.lon), n.sog / kKnot, deg360(n.cog)};
       ASSERT_TRUE(send(gpsd.udp_port(0), dev.gnss(n, t)));
       ASSERT_TRUE(send(gpsd.udp_port(0), dev.gyro(n)));
       ++gyro_datagrams;
@@ -264,7 +212,7 @@ TEST(HilDevicesGpsd, SimulatorOutputDecodedByGpsdGivesBackTheTruth) {
       continue;
     }
     const double dlat = std::fabs(*glat - want.lat), dlon = std::fabs(*glon - want.lon);
-    const double dspeed_kn = std::fabs(*gspeed / kKnot - want.sog_kn), dtrack = angle_diff(*gtrack, want.cog_deg);
+    const double dspeed_kn = std::fabs(*gspeed / kKnot - want.sog_kn), dtrack = hil::angle_diff(*gtrack, want.cog_deg);
     const bool good = mode == 3.0 && dlat <= 1e-6 && dlon <= 1e-6 && dspeed_kn <= 0.01 && dtrack <= 0.01;
     if (!good)
       ADD_FAILURE() << "TPV differs: sent lat " << want.lat << " lon " << want.lon << " sog " << want.sog_kn
@@ -290,15 +238,15 @@ TEST(HilDevicesGpsd, SimulatorOutputDecodedByGpsdGivesBackTheTruth) {
     const double ghdg = hil::json_number(l, "heading").value_or(NAN);
     const double gturn = hil::json_number(l, "turn").value_or(NAN);
     const double dlat = std::fabs(glat - w.lat), dlon = std::fabs(glon - w.lon);
-    const double dsog = std::fabs(gsog - w.sog_kn), dcog = angle_diff(gcog, w.cog_deg), dhdg = angle_diff(ghdg, w.heading_deg);
+    const double dsog = std::fabs(gsog - w.sog_kn), dcog = hil::angle_diff(gcog, w.cog_deg), dhdg = hil::angle_diff(ghdg, w.heading_deg);
     // Resolution: 1/600000 deg, 0.1 kn, 0.1 deg, whole degrees; rounding gives half of it at most.
     const bool good = dlat <= 0.5 / 600000 + 1e-12 && dlon <= 0.5 / 600000 + 1e-12 && dsog <= 0.05 + 1e-9 &&
                       dcog <= 0.05 + 1e-9 && dhdg <= 0.5 + 1e-9 && ghdg < 360 &&
-                      (!check_turn || gturn == want_turn(w.rot_deg_min));
+                      (!check_turn || gturn == mpgc::testing::expected_rot_ais(w.rot_deg_min));
     if (!good)
       ADD_FAILURE() << "AIS differs: sent lat " << w.lat << " lon " << w.lon << " sog " << w.sog_kn << " kn cog "
                     << w.cog_deg << " hdg " << w.heading_deg << " rot " << w.rot_deg_min << " deg/min (turn "
-                    << want_turn(w.rot_deg_min) << "); gpsd: " << l;
+                    << mpgc::testing::expected_rot_ais(w.rot_deg_min) << "); gpsd: " << l;
     max_alat = std::max(max_alat, dlat);
     max_alon = std::max(max_alon, dlon);
     max_asog = std::max(max_asog, dsog);
@@ -364,7 +312,7 @@ TEST(HilDevicesGpsd, SimulatorOutputDecodedByGpsdGivesBackTheTruth) {
   // ---- heading: $HEHDT is dropped by gpsd 3.22; the control $GPHDT is decoded ----
   int control_att = 0;
   for (size_t i = att_from_gyro; i < att_lines.size(); ++i)
-    control_att += angle_diff(hil::json_number(att_lines[i], "heading").value_or(NAN), control_hdg) <= 0.005;
+    control_att += hil::angle_diff(hil::json_number(att_lines[i], "heading").value_or(NAN), control_hdg) <= 0.005;
 
   std::printf("gpsd vs the simulator (120 s, rudder 0/+10/-15 deg, sigmas 0):\n"
               "  TPV: %d of %zu fixes agree (%d found, %d TPV lines); max |dlat| %.2e deg, |dlon| %.2e deg, "

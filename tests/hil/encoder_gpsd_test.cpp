@@ -4,15 +4,9 @@
 // sentences' resolution. The test starts and stops its own gpsd (gpsd_harness.hpp).
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,6 +15,7 @@
 #include "mpgc/nmea/ais.hpp"
 #include "mpgc/nmea/nmea0183.hpp"
 #include "mpgc/testing.hpp"
+#include "mpgc/testing_ais.hpp"
 
 using namespace mpgc;
 
@@ -28,53 +23,28 @@ namespace {
 
 constexpr double kKnot = 1852.0 / 3600.0;  // [m/s]
 
-class UdpSender {
- public:
-  UdpSender() : fd_(socket(AF_INET, SOCK_DGRAM, 0)) {}
-  ~UdpSender() {
-    if (fd_ >= 0) close(fd_);
+// Reads gpsd's lines (200 ms at a time, 5 s in all) until `done(line)` returns true. With
+// bad_json, a line that is not plausible JSON is a failure, counted there, and not given to done.
+template <class Done>
+void read_until(hil::GpsdWatch& watch, int* bad_json, Done done) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (std::chrono::steady_clock::now() < end) {
+    const auto l = watch.line(200);
+    if (!l) continue;
+    if (bad_json != nullptr && !hil::json_plausible(*l)) {
+      ++*bad_json;
+      ADD_FAILURE() << "invalid JSON from gpsd: " << *l;
+      continue;
+    }
+    if (done(*l)) return;
   }
-  // One datagram to 127.0.0.1:port (never anywhere else).
-  bool send(int port, const std::string& data) const {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(static_cast<uint16_t>(port));
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    return sendto(fd_, data.data(), data.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof a) ==
-           static_cast<ssize_t>(data.size());
-  }
-
- private:
-  int fd_;
-};
-
-// gpsd's TPV time for a UTC instant: "YYYY-MM-DDTHH:MM:SS.mmmZ".
-std::string iso_ms(int64_t ns) {
-  const time_t s = static_cast<time_t>(ns / 1000000000);
-  std::tm tm{};
-  gmtime_r(&s, &tm);
-  char buf[80];
-  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
-                tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ns / 1000000 % 1000));
-  return buf;
 }
-
-double angle_diff(double a, double b) { return std::fabs(std::remainder(a - b, 360.0)); }
-
-// Start gpsd or fail the test with what to install (nothing is skipped).
-#define START_GPSD(var, n_udp)                                                                        \
-  ASSERT_FALSE(hil::find_exe("gpsd").empty()) << "gpsd is not installed: apt-get install gpsd gpsd-clients"; \
-  auto var = hil::GpsdProcess::udp(n_udp);                                                            \
-  ASSERT_TRUE(var.ok()) << "gpsd did not start: " << var.error()
 
 }  // namespace
 
 TEST(HilEncoderGpsd, OwnShipFixesAndHeading) {
-  START_GPSD(gpsd, 2);
-  hil::GpsdWatch watch(gpsd.port());
-  ASSERT_TRUE(watch.ok()) << watch.error();
-  ASSERT_TRUE(watch.await_watch(5000)) << "gpsd did not answer ?WATCH";
-  UdpSender udp;
+  MPGC_HIL_GPSD_WITH_WATCH(gpsd, watch, 2);
+  hil::UdpSender udp;
 
   // ~20 states across the hemispheres; seeded.
   struct State {
@@ -106,21 +76,14 @@ TEST(HilEncoderGpsd, OwnShipFixesAndHeading) {
     ASSERT_TRUE(udp.send(gpsd.udp_port(0), nmea::rmc("GP", f) + nmea::gga("GP", f) + nmea::vtg("GP", f) +
                                                nmea::hdt("GP", st.hdg)));
     // Lock-step: read until this state's ATT (HDT is the last sentence of the datagram).
-    const std::string want_time = iso_ms(f.utc_ns);
+    const std::string want_time = hil::iso_ms(f.utc_ns);
     std::string last_tpv, att;
-    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-    while (att.empty() && std::chrono::steady_clock::now() < end) {
-      const auto l = watch.line(200);
-      if (!l) continue;
-      if (!hil::json_plausible(*l)) {
-        ++bad_json;
-        ADD_FAILURE() << "invalid JSON from gpsd: " << *l;
-        continue;
-      }
-      const std::string cls = hil::json_class(*l);
-      if (cls == "TPV" && hil::json_string(*l, "time").value_or("") == want_time) last_tpv = *l;
-      if (cls == "ATT") att = *l;
-    }
+    read_until(watch, &bad_json, [&](const std::string& l) {
+      const std::string cls = hil::json_class(l);
+      if (cls == "TPV" && hil::json_string(l, "time").value_or("") == want_time) last_tpv = l;
+      if (cls == "ATT") att = l;
+      return !att.empty();
+    });
     SCOPED_TRACE("state " + std::to_string(i) + ": " + nmea::rmc("GP", f));
     ASSERT_FALSE(last_tpv.empty()) << "no TPV with time " << want_time;
     ASSERT_FALSE(att.empty()) << "no ATT";
@@ -134,7 +97,7 @@ TEST(HilEncoderGpsd, OwnShipFixesAndHeading) {
     ASSERT_TRUE(ghdg) << att;
     const double dlat = std::fabs(*glat - st.lat), dlon = std::fabs(*glon - st.lon);
     const double dspeed_kn = std::fabs(*gspeed / kKnot - st.sog);  // gpsd: m/s, 3 decimals
-    const double dtrack = angle_diff(*gtrack, st.cog), dhdg = angle_diff(*ghdg, st.hdg);
+    const double dtrack = hil::angle_diff(*gtrack, st.cog), dhdg = hil::angle_diff(*ghdg, st.hdg);
     EXPECT_LE(dlat, 1e-6) << last_tpv;
     EXPECT_LE(dlon, 1e-6) << last_tpv;
     EXPECT_LE(dspeed_kn, 0.01) << last_tpv;
@@ -159,11 +122,8 @@ TEST(HilEncoderGpsd, OwnShipFixesAndHeading) {
 }
 
 TEST(HilEncoderGpsd, AisTargets) {
-  START_GPSD(gpsd, 2);
-  hil::GpsdWatch watch(gpsd.port());
-  ASSERT_TRUE(watch.ok()) << watch.error();
-  ASSERT_TRUE(watch.await_watch(5000)) << "gpsd did not answer ?WATCH";
-  UdpSender udp;
+  MPGC_HIL_GPSD_WITH_WATCH(gpsd, watch, 2);
+  hil::UdpSender udp;
 
   std::mt19937 rng(1371);
   std::uniform_real_distribution<double> lat(-85, 85), lon(-179.99, 179.99), sog(0, 30), ang(0, 359.99),
@@ -193,17 +153,10 @@ TEST(HilEncoderGpsd, AisTargets) {
     ASSERT_EQ(lines.size(), 1u);
     ASSERT_TRUE(udp.send(gpsd.udp_port(1), lines[0]));
     std::string got;
-    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-    while (got.empty() && std::chrono::steady_clock::now() < end) {
-      const auto l = watch.line(200);
-      if (!l) continue;
-      if (!hil::json_plausible(*l)) {
-        ++bad_json;
-        ADD_FAILURE() << "invalid JSON from gpsd: " << *l;
-        continue;
-      }
-      if (hil::json_class(*l) == "AIS" && hil::json_number(*l, "mmsi").value_or(0) == m.mmsi) got = *l;
-    }
+    read_until(watch, &bad_json, [&](const std::string& l) {
+      if (hil::json_class(l) == "AIS" && hil::json_number(l, "mmsi").value_or(0) == m.mmsi) got = l;
+      return !got.empty();
+    });
     SCOPED_TRACE(lines[0]);
     ASSERT_FALSE(got.empty()) << "no AIS for mmsi " << m.mmsi;
     // Unscaled: lat/lon in 1/600000 deg, speed 0.1 kn, course 0.1 deg, heading whole degrees.
@@ -217,14 +170,9 @@ TEST(HilEncoderGpsd, AisTargets) {
     EXPECT_EQ(hil::json_number(got, "second").value_or(-1), m.second);
     EXPECT_EQ(hil::json_number(got, "radio").value_or(-1), m.radio);
     EXPECT_EQ(hil::json_raw(got, "accuracy").value_or(""), m.accuracy ? "true" : "false");
-    // ROT_AIS computed here independently: round(4.733 sqrt|rot|), signed, +-126; -128 n/a.
-    const double want_turn = std::isnan(m.rot_deg_min)
-                                 ? -128
-                                 : std::copysign(std::min(126.0, std::round(4.733 * std::sqrt(std::fabs(m.rot_deg_min)))),
-                                                 m.rot_deg_min);
-    EXPECT_EQ(hil::json_number(got, "turn").value_or(999), want_turn) << got;
+    EXPECT_EQ(hil::json_number(got, "turn").value_or(999), mpgc::testing::expected_rot_ais(m.rot_deg_min)) << got;
     const double dlat = std::fabs(glat - m.lat_deg), dlon = std::fabs(glon - m.lon_deg);
-    const double dsog = std::fabs(gsog - m.sog_kn), dcog = angle_diff(gcog, m.cog_deg);
+    const double dsog = std::fabs(gsog - m.sog_kn), dcog = hil::angle_diff(gcog, m.cog_deg);
     EXPECT_LE(dlat, 1.0 / 600000) << got;
     EXPECT_LE(dlon, 1.0 / 600000) << got;
     EXPECT_LE(dsog, 0.1) << got;
@@ -233,7 +181,7 @@ TEST(HilEncoderGpsd, AisTargets) {
     if (std::isnan(m.heading_deg)) {
       EXPECT_EQ(ghdg, 511) << got;
     } else {
-      dhdg = angle_diff(ghdg, m.heading_deg);
+      dhdg = hil::angle_diff(ghdg, m.heading_deg);
       EXPECT_LE(dhdg, 1.0) << got;
       EXPECT_LT(ghdg, 360) << got;
     }
@@ -246,27 +194,16 @@ TEST(HilEncoderGpsd, AisTargets) {
   }
 
   // Type 5 in two fragments, in one datagram.
-  ais::StaticVoyage v;
-  v.mmsi = 257000099;
-  v.imo = 9134270;
-  v.callsign = "LAXY7";
-  v.name = "MPGC TEST VESSEL";
-  v.ship_type = 70;
-  v.to_bow = 150;
-  v.to_stern = 45;
-  v.to_port = 12;
-  v.to_starboard = 20;
-  v.draught_m = 9.4;
-  v.destination = "NOBRE";
+  // mmsi, imo, callsign, name, ship type, to bow/stern/port/starboard [m], draught [m], destination
+  const ais::StaticVoyage v{257000099, 9134270, "LAXY7", "MPGC TEST VESSEL", 70, 150, 45, 12, 20, 9.4, "NOBRE"};
   const auto frags = ais::sentences(ais::encode(v), 'A', 3);
   ASSERT_EQ(frags.size(), 2u);
   ASSERT_TRUE(udp.send(gpsd.udp_port(1), frags[0] + frags[1]));
   std::string t5;
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (t5.empty() && std::chrono::steady_clock::now() < end) {
-    const auto l = watch.line(200);
-    if (l && hil::json_class(*l) == "AIS" && hil::json_number(*l, "type").value_or(0) == 5) t5 = *l;
-  }
+  read_until(watch, nullptr, [&](const std::string& l) {  // these lines are not JSON-checked
+    if (hil::json_class(l) == "AIS" && hil::json_number(l, "type").value_or(0) == 5) t5 = l;
+    return !t5.empty();
+  });
   ASSERT_FALSE(t5.empty()) << "no type 5 from " << frags[0] << frags[1];
   EXPECT_EQ(hil::json_number(t5, "mmsi").value_or(0), v.mmsi);
   EXPECT_EQ(hil::json_number(t5, "imo").value_or(0), v.imo);

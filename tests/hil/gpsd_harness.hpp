@@ -1,7 +1,8 @@
 // Test harness for the hardware-in-the-loop tests: a gpsd of the test's own on loopback, fed over
 // UDP by the test, or a gpsfake replaying a log (notes/gpsd.md §1, §4); a JSON watch on its TCP
-// port; a tiny field extraction for gpsd's flat JSON lines. Header-only, no gtest: callers check
-// ok() / error() and put the message in their own assertion.
+// port; a UDP sender to feed gpsd's devices; a tiny field extraction for gpsd's flat JSON lines.
+// Header-only, no gtest: callers check ok() / error() and put the message in their own assertion
+// (MPGC_HIL_GPSD_WITH_WATCH at the end expands to the caller's gtest assertions).
 //
 // Processes run in their own process group (runuser -> gpsd, gpsfake -> python -> gpsd), so the
 // destructor signals exactly that group: SIGTERM, then SIGKILL after 3 s. As root they run as
@@ -23,9 +24,12 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -445,6 +449,29 @@ class GpsdWatch {
   std::string error_;
 };
 
+// Datagrams to gpsd's udp:// devices, on 127.0.0.1 only.
+class UdpSender {
+ public:
+  UdpSender() : fd_(socket(AF_INET, SOCK_DGRAM, 0)) {}
+  ~UdpSender() {
+    if (fd_ >= 0) close(fd_);
+  }
+  UdpSender(const UdpSender&) = delete;
+  UdpSender& operator=(const UdpSender&) = delete;
+  // One datagram to 127.0.0.1:port (never anywhere else).
+  bool send(int port, const std::string& data) const {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    return sendto(fd_, data.data(), data.size(), 0, reinterpret_cast<const sockaddr*>(&a), sizeof a) ==
+           static_cast<ssize_t>(data.size());
+  }
+
+ private:
+  int fd_;
+};
+
 // Connects, watches and reads n JSON lines with a timeout (gpspipe -w -n N).
 inline std::vector<std::string> read_json_lines(int port, size_t n, int timeout_ms, std::string* why = nullptr) {
   GpsdWatch w(port);
@@ -488,6 +515,20 @@ inline std::optional<std::string> json_string(const std::string& line, const std
 }
 inline std::string json_class(const std::string& line) { return json_raw(line, "class").value_or(""); }
 
+// gpsd's TPV time for a UTC instant [ns]: "YYYY-MM-DDTHH:MM:SS.mmmZ".
+inline std::string iso_ms(int64_t ns) {
+  const time_t s = static_cast<time_t>(ns / 1000000000);
+  std::tm tm{};
+  gmtime_r(&s, &tm);
+  char buf[80];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
+                tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ns / 1000000 % 1000));
+  return buf;
+}
+
+// |a - b| of two angles in degrees (gpsd's track/heading/course against what was sent), 0..180.
+inline double angle_diff(double a, double b) { return std::fabs(std::remainder(a - b, 360.0)); }
+
 // A line gpsd 3.22 can get wrong (§5: ATT after AIS gives `,,` and `"...Z""heading"`): flat-object
 // shape, no empty member, no two strings without a comma between them (`:""` is an empty value).
 inline bool json_plausible(const std::string& line) {
@@ -499,3 +540,14 @@ inline bool json_plausible(const std::string& line) {
 }
 
 }  // namespace mpgc::hil
+
+// In a gtest test body: `gpsd_var`, a gpsd reading n_udp UDP devices, and `watch_var`, a JSON watch
+// on it that gpsd has answered, so what is sent from now on is reported to it. Fails the test
+// with what is missing or went wrong (nothing is skipped).
+#define MPGC_HIL_GPSD_WITH_WATCH(gpsd_var, watch_var, n_udp)                                           \
+  ASSERT_FALSE(::mpgc::hil::find_exe("gpsd").empty()) << "gpsd is not installed: apt-get install gpsd gpsd-clients"; \
+  auto gpsd_var = ::mpgc::hil::GpsdProcess::udp(n_udp);                                                \
+  ASSERT_TRUE(gpsd_var.ok()) << "gpsd did not start: " << gpsd_var.error();                            \
+  ::mpgc::hil::GpsdWatch watch_var(gpsd_var.port());                                                   \
+  ASSERT_TRUE(watch_var.ok()) << watch_var.error();                                                    \
+  ASSERT_TRUE(watch_var.await_watch(5000)) << "gpsd did not answer ?WATCH"

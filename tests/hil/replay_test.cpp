@@ -1,23 +1,18 @@
 // HIL replay: real NMEA/AIS logs played through gpsfake (a real gpsd 3.22) into GpsdClient, and
 // compared with gpsd's own decoded truth (the .chk files of gpsd's regression tests), and the
 // no-fix stretch of mtk-3301.log fed through NavFusion. Each test starts its own gpsfake on
-// loopback (shared/notes/gpsd.md §1); JSON fields and port checks from tests/hil/gpsd_harness.hpp.
+// loopback (shared/notes/gpsd.md §1); gpsfake and JSON fields from tests/hil/gpsd_harness.hpp.
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <netinet/in.h>
-#include <signal.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -38,124 +33,6 @@ using namespace mpgc::ship_bridge;
 using mpgc::testing::shared_data;
 
 // ---------------------------------------------------------------------------------------------
-// gpsfake on a log: `gpsfake -1 -p -q -P <port> <log>`, as user nobody when root (a root gpsd
-// leaves its socket and SHM segment behind), in a process group of its own (notes §1). With -p
-// gpsfake's own watcher starts the feed ~1.4 s after it attached, so a client that connects as
-// soon as the port listens gets every message, and gpsfake exits by itself (killing its gpsd)
-// when the log is done.
-//
-// Not gpsd_harness.hpp's GpsdProcess::gpsfake: its port_free() test-binds without SO_REUSEADDR,
-// so every port a replay used stays "in use" for the 60 s of TIME_WAIT that gpsd's close leaves
-// on it (two per replay: gpsfake's watcher and ours), and with its 8 pid-derived candidates a
-// process doing 7 replays failed 2 runs in 3. gpsd itself binds with SO_REUSEADDR (gpsd.c), so
-// here only a port in LISTEN counts as taken, and a gpsfake that exits early (port lost to a
-// parallel test) is retried on the next port.
-class Gpsfake {
- public:
-  explicit Gpsfake(const std::string& log) {
-    static int calls = 0;
-    for (int attempt = 0; attempt < 20; ++attempt) {
-      const int port = 29400 + static_cast<int>((getpid() + 37 * (calls++)) % 500);
-      if (mpgc::hil::port_bound(port, true)) continue;
-      if (start(log, port)) {
-        port_ = port;
-        return;
-      }
-      stop();
-    }
-  }
-  ~Gpsfake() { stop(); }
-  Gpsfake(const Gpsfake&) = delete;
-  Gpsfake& operator=(const Gpsfake&) = delete;
-
-  int port() const { return port_; }  // 0 when gpsfake could not be started
-  const std::string& error() const { return error_; }
-  // Waits (up to timeout) for gpsfake to exit by itself; its exit status, or -1.
-  int wait_exit(double timeout_s) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    while (pid_ > 0 && std::chrono::steady_clock::now() < end) {
-      int st = 0;
-      if (waitpid(pid_, &st, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return -1;
-  }
-
- private:
-  bool start(const std::string& log, int port) {
-    char tmpl[] = "/tmp/mpgc-hil-gpsfake-XXXXXX";
-    const int efd = mkstemp(tmpl);
-    if (efd < 0) return false;
-    err_path_ = tmpl;
-    std::vector<std::string> args;
-    if (geteuid() == 0) args = {"runuser", "-u", "nobody", "--"};
-    for (const char* a : {"gpsfake", "-1", "-p", "-q", "-P"}) args.emplace_back(a);
-    args.push_back(std::to_string(port));
-    args.push_back(log);
-    pid_ = fork();
-    if (pid_ < 0) {
-      close(efd);
-      return false;
-    }
-    if (pid_ == 0) {
-      setpgid(0, 0);  // gpsfake and its gpsd in a group of their own, stopped together
-      const int nul = open("/dev/null", O_RDWR);
-      dup2(nul, 0);
-      dup2(nul, 1);  // -p prints everything gpsd sends: not needed here
-      dup2(efd, 2);
-      setenv("TMPDIR", "/tmp", 1);  // gpsfake puts gpsd's control socket there (nobody can write)
-      const char* path = std::getenv("PATH");
-      setenv("PATH", (std::string("/usr/sbin:/usr/bin:/sbin:/bin:") + (path ? path : "")).c_str(), 1);
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execvp(argv[0], argv.data());
-      _exit(127);
-    }
-    setpgid(pid_, pid_);
-    close(efd);
-    // Listening takes ~0.2 s; a taken port makes gpsfake exit at once.
-    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(15);
-    while (std::chrono::steady_clock::now() < end) {
-      if (mpgc::hil::port_bound(port, true)) return true;
-      if (waitpid(pid_, nullptr, WNOHANG) == pid_) {
-        pid_ = -1;
-        error_ = "gpsfake on port " + std::to_string(port) + " exited: " + mpgc::hil::read_file(err_path_);
-        return false;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    error_ = "port " + std::to_string(port) + " not listening after 15 s: " + mpgc::hil::read_file(err_path_);
-    return false;
-  }
-
-  void stop() {
-    if (pid_ > 0) {
-      kill(-pid_, SIGTERM);
-      for (int i = 0; i < 100 && waitpid(pid_, nullptr, WNOHANG) == 0; ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      if (waitpid(pid_, nullptr, WNOHANG) == 0) {
-        kill(-pid_, SIGKILL);
-        waitpid(pid_, nullptr, 0);
-      }
-      pid_ = -1;
-    }
-    if (!err_path_.empty()) {
-      unlink(err_path_.c_str());
-      err_path_.clear();
-    }
-  }
-
-  pid_t pid_ = -1;
-  int port_ = 0;
-  std::string err_path_;
-  std::string error_;
-};
-
-// ---------------------------------------------------------------------------------------------
 // Everything GpsdClient gave for one replay, in order.
 struct Replay {
   std::vector<GpsdEvent> events;
@@ -173,8 +50,10 @@ struct Replay {
 Replay replay(const std::string& rel, bool nmea = false) {
   Replay r;
   const std::string log = shared_data(rel);
-  Gpsfake fake(log);
-  if (fake.port() == 0) {
+  // gpsfake -1 -p: the feed starts after our client has connected, and gpsfake exits (with its
+  // gpsd) at the end of the log (gpsd_harness.hpp, notes §1).
+  auto fake = mpgc::hil::GpsdProcess::gpsfake(log);
+  if (!fake.ok()) {
     ADD_FAILURE() << "gpsfake did not start on " << log << ": " << fake.error();
     return r;
   }
@@ -193,7 +72,7 @@ Replay replay(const std::string& rel, bool nmea = false) {
   EXPECT_LT(r.max_poll_s, 1.2) << rel;
   EXPECT_FALSE(client.connected());
   r.unparsed = client.unparsed();
-  r.gpsfake_rc = fake.wait_exit(10.0);
+  r.gpsfake_rc = fake.wait_exit(10000).value_or(-1);
   for (const auto& e : r.events) {
     if (auto* f = std::get_if<GnssFix>(&e)) r.fixes.push_back(*f);
     if (auto* h = std::get_if<AttitudeHeading>(&e)) r.headings.push_back(*h);
@@ -286,6 +165,14 @@ void expect_clean_end(const Replay& r, const std::string& rel) {
   EXPECT_EQ(r.gpsfake_rc, 0) << rel;
 }
 
+// A replay of rel that ended cleanly and whose TPV agree with the .chk's: tpv_agree of them.
+Replay checked_replay(const std::string& rel, int tpv_agree, bool nmea = false) {
+  Replay r = replay(rel, nmea);
+  expect_clean_end(r, rel);
+  EXPECT_EQ(compare_tpv(rel, r), tpv_agree) << rel;
+  return r;
+}
+
 // ---------------------------------------------------------------------------------------------
 // AIS truth (sample.aivdm.js.chk is scaled: degrees, knots, "turn" as "nan"/"fastleft"/
 // "fastright" or (raw/4.733)^2 rounded and unsigned: gpsd_json.c prints rot1*rot1).
@@ -356,9 +243,7 @@ const AisMessage* next_match(const std::vector<AisMessage>& got, size_t* k, int 
 
 TEST(HilReplay, SaabR4TpvAndOwnShipAis) {
   const std::string rel = "nmea/gpsd/saab-r4.log";
-  const Replay r = replay(rel);
-  expect_clean_end(r, rel);
-  EXPECT_EQ(compare_tpv(rel, r), 14);
+  const Replay r = checked_replay(rel, 14);
 
   // AIS: the .chk is unscaled, as our watch: the raw integers, converted.
   const auto truth = chk_lines(rel + ".chk", "AIS");
@@ -393,9 +278,7 @@ TEST(HilReplay, SaabR4WithNmeaPassThrough) {
   // With nmea = true gpsd passes the sentences through as well: the !AIVDO lines arrive raw (the
   // only place own-ship AIS is marked as such), the JSON reports are unchanged.
   const std::string rel = "nmea/gpsd/saab-r4.log";
-  const Replay r = replay(rel, true);
-  expect_clean_end(r, rel);
-  EXPECT_EQ(compare_tpv(rel, r), 14);
+  const Replay r = checked_replay(rel, 14, true);
   size_t aivdo = 0, aivdm = 0, dollar = 0;
   for (const auto& n : r.raw) {
     EXPECT_EQ(n.line.find_first_of("\r\n"), std::string::npos) << n.line;
@@ -416,9 +299,7 @@ TEST(HilReplay, SaabR4WithNmeaPassThrough) {
 
 TEST(HilReplay, HemiTpvAndHeadings) {
   const std::string rel = "nmea/gpsd/hemi.log";
-  const Replay r = replay(rel);
-  expect_clean_end(r, rel);
-  EXPECT_EQ(compare_tpv(rel, r), 215);
+  const Replay r = checked_replay(rel, 215);
 
   // ATT headings = the log's non-empty $GPHDT values, in order.
   std::ifstream f(shared_data(rel));
@@ -443,9 +324,7 @@ TEST(HilReplay, HemiTpvAndHeadings) {
 
 TEST(HilReplay, Mtk3301NoFixStretchAndNavFusion) {
   const std::string rel = "nmea/gpsd/mtk-3301.log";
-  const Replay r = replay(rel);
-  expect_clean_end(r, rel);
-  EXPECT_EQ(compare_tpv(rel, r), 15);
+  const Replay r = checked_replay(rel, 15);
 
   // The power-up stretch: gpsd says mode 1, and the receiver's placeholder position (8960.0000 N
   // = 90 N, 0 E) never comes out as coordinates.

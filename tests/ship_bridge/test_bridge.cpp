@@ -1,7 +1,7 @@
 // Unit tests of the hardware-in-the-loop path without processes: the bridge's NavFusion,
 // AisAssembler and actuator wire (encode_orders, apply_nmea_line), and the simulator as the ship's
 // devices (ship_simulator::Devices). Sentences are checked field by field with the shared codec's
-// framing parser; AIS payloads are de-armoured here, independently of the encoder.
+// framing parser; AIS payloads are read back by mpgc/testing_ais.hpp, independently of the encoder.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +18,7 @@
 #include "mpgc/nmea/nmea0183.hpp"
 #include "mpgc/ship_bridge/bridge.hpp"
 #include "mpgc/ship_simulator/devices.hpp"
+#include "mpgc/testing_ais.hpp"
 
 using namespace mpgc;
 namespace sb = mpgc::ship_bridge;
@@ -101,37 +102,6 @@ double deg360(double rad) {
   return d < 0 ? d + 360.0 : d;
 }
 
-// ---- a small AIS de-armourer, independent of mpgc::ais ----
-struct AisBits {
-  std::vector<int> b;
-  uint32_t u(int start, int len) const {
-    uint32_t v = 0;
-    for (int i = start; i < start + len; ++i) v = (v << 1) | static_cast<uint32_t>(b.at(static_cast<size_t>(i)));
-    return v;
-  }
-  int32_t s(int start, int len) const {
-    const uint32_t v = u(start, len);
-    return (v >> (len - 1)) & 1U ? static_cast<int32_t>(v) - (1 << len) : static_cast<int32_t>(v);
-  }
-  std::string text(int start, int chars) const {
-    std::string out;
-    for (int i = 0; i < chars; ++i) {
-      const uint32_t c = u(start + 6 * i, 6);
-      out += static_cast<char>(c < 32 ? c + 64 : c);
-    }
-    while (!out.empty() && (out.back() == '@' || out.back() == ' ')) out.pop_back();
-    return out;
-  }
-};
-void append_payload(AisBits* bits, const std::string& payload, int fill) {
-  for (char ch : payload) {
-    int v = ch - 48;
-    if (v > 40) v -= 8;
-    for (int k = 5; k >= 0; --k) bits->b.push_back((v >> k) & 1);
-  }
-  for (int k = 0; k < fill && !bits->b.empty(); ++k) bits->b.pop_back();
-}
-
 struct Vdm {
   bool own = false;
   int n = 0, k = 0;
@@ -160,10 +130,15 @@ Vdm parse_vdm(const std::string& line) {
   return v;
 }
 
-sb::AisMessage position_msg(int type, uint32_t mmsi) {
+sb::AisMessage ais_msg(int type, uint32_t mmsi) {
   sb::AisMessage m;
   m.type = type;
   m.mmsi = mmsi;
+  return m;
+}
+
+sb::AisMessage position_msg(int type, uint32_t mmsi) {
+  sb::AisMessage m = ais_msg(type, mmsi);
   m.has_position = true;
   m.lat_deg = 59.5;
   m.lon_deg = 10.5;
@@ -176,9 +151,7 @@ sb::AisMessage position_msg(int type, uint32_t mmsi) {
 }
 
 sb::AisMessage static_msg(int type, uint32_t mmsi) {
-  sb::AisMessage m;
-  m.type = type;
-  m.mmsi = mmsi;
+  sb::AisMessage m = ais_msg(type, mmsi);
   m.has_static = true;
   return m;
 }
@@ -724,9 +697,7 @@ TEST(AisAssembler, PositionNotAvailableRejected) {
   }
   EXPECT_EQ(count(a.rejected(), "ais.position"), 4u);
   // A message without position at all is no report, and not a rejection.
-  sb::AisMessage none;
-  none.type = 27;
-  none.mmsi = 257000020;
+  const sb::AisMessage none = ais_msg(27, 257000020);
   EXPECT_FALSE(a.on_message(none, &why).has_value());
   EXPECT_EQ(count(a.rejected(), "ais.position"), 4u);
 }
@@ -1115,21 +1086,21 @@ TEST(Devices, AisTargetType1AndType5Every6Minutes) {
     const Vdm v = parse_vdm(lines[0]);
     EXPECT_FALSE(v.own);
     EXPECT_EQ(v.n, 1);
-    AisBits b;
-    append_payload(&b, v.payload, v.fill);
-    ASSERT_EQ(b.b.size(), 168u);
-    EXPECT_EQ(b.u(0, 6), 1u);
-    EXPECT_EQ(b.u(8, 30), tc.mmsi);
-    EXPECT_EQ(b.u(38, 4), 0u);
+    const mpgc::testing::AisBits b(v.payload, v.fill);
+    ASSERT_EQ(b.size(), 168u);
+    const mpgc::testing::AisType1 d = mpgc::testing::ais_type1(b);
+    EXPECT_EQ(d.type, 1u);
+    EXPECT_EQ(d.mmsi, tc.mmsi);
+    EXPECT_EQ(d.status, 0u);
     const int want_turn = static_cast<int>(std::lround(4.733 * std::sqrt(10.0)));
-    EXPECT_EQ(b.s(42, 8), want_turn);
-    EXPECT_NEAR(b.u(50, 10) / 10.0, m.sog / kKn, 0.05 + 1e-9);
+    EXPECT_EQ(d.rot, want_turn);
+    EXPECT_NEAR(d.sog / 10.0, m.sog / kKn, 0.05 + 1e-9);
     const geo::LatLon ll = frame.to_latlon({m.x, m.y});
-    EXPECT_NEAR(b.s(61, 28) / 600000.0, geo::rad2deg(ll.lon), 0.5 / 600000 + 1e-12);
-    EXPECT_NEAR(b.s(89, 27) / 600000.0, geo::rad2deg(ll.lat), 0.5 / 600000 + 1e-12);
-    EXPECT_LE(angle_diff_deg(b.u(116, 12) / 10.0, 314.96), 0.05 + 1e-9);
-    EXPECT_EQ(b.u(128, 9), 315u);  // -45.4 deg -> 314.6 -> 315, whole degrees
-    EXPECT_EQ(b.u(137, 6), 5u);    // UTC second of 00:00:05
+    EXPECT_NEAR(d.lon / 600000.0, geo::rad2deg(ll.lon), 0.5 / 600000 + 1e-12);
+    EXPECT_NEAR(d.lat / 600000.0, geo::rad2deg(ll.lat), 0.5 / 600000 + 1e-12);
+    EXPECT_LE(angle_diff_deg(d.cog / 10.0, 314.96), 0.05 + 1e-9);
+    EXPECT_EQ(d.hdg, 315u);     // -45.4 deg -> 314.6 -> 315, whole degrees
+    EXPECT_EQ(d.second, 5u);    // UTC second of 00:00:05
   }
   {
     const Vdm f1 = parse_vdm(lines[1]), f2 = parse_vdm(lines[2]);
@@ -1141,16 +1112,16 @@ TEST(Devices, AisTargetType1AndType5Every6Minutes) {
     EXPECT_EQ(f1.seq, f2.seq);
     EXPECT_EQ(f1.channel, f2.channel);
     EXPECT_EQ(f1.fill, 0);
-    AisBits b;
-    append_payload(&b, f1.payload, f1.fill);
-    append_payload(&b, f2.payload, f2.fill);
-    ASSERT_EQ(b.b.size(), 424u);
-    EXPECT_EQ(b.u(0, 6), 5u);
-    EXPECT_EQ(b.u(8, 30), tc.mmsi);
-    EXPECT_EQ(b.text(112, 20), "PORT SIDE");
-    EXPECT_EQ(b.u(232, 8), 70u);
-    EXPECT_EQ(b.u(240, 9) + b.u(249, 9), 101u);  // to_bow + to_stern = length
-    EXPECT_EQ(b.u(258, 6) + b.u(264, 6), 21u);   // to_port + to_starboard = beam
+    mpgc::testing::AisBits b(f1.payload, f1.fill);
+    b.append(f2.payload, f2.fill);
+    ASSERT_EQ(b.size(), 424u);
+    const mpgc::testing::AisType5 d = mpgc::testing::ais_type5(b);
+    EXPECT_EQ(d.type, 5u);
+    EXPECT_EQ(d.mmsi, tc.mmsi);
+    EXPECT_EQ(mpgc::testing::ais_trimmed(d.name), "PORT SIDE");
+    EXPECT_EQ(d.ship_type, 70u);
+    EXPECT_EQ(d.bow + d.stern, 101u);  // to_bow + to_stern = length
+    EXPECT_EQ(d.port + d.stbd, 21u);   // to_port + to_starboard = beam
   }
   // Later reports: type 1 only, until 6 min after the last type 5.
   EXPECT_EQ(dev.ais_target(m, tc, t0 + sec(10)).size(), 1u);
@@ -1182,12 +1153,12 @@ TEST(Devices, AisTargetNotAvailableValues) {
   const auto lines = dev.ais_target(m, tc, sec(1));
   ASSERT_FALSE(lines.empty());
   const Vdm v = parse_vdm(lines[0]);
-  AisBits b;
-  append_payload(&b, v.payload, v.fill);
-  ASSERT_EQ(b.b.size(), 168u);
-  EXPECT_EQ(b.s(42, 8), -128);    // rot n/a
-  EXPECT_EQ(b.u(128, 9), 511u);   // heading n/a
-  EXPECT_EQ(b.u(38, 4), 5u);      // moored
+  const mpgc::testing::AisBits b(v.payload, v.fill);
+  ASSERT_EQ(b.size(), 168u);
+  const mpgc::testing::AisType1 d = mpgc::testing::ais_type1(b);
+  EXPECT_EQ(d.rot, -128);     // rot n/a
+  EXPECT_EQ(d.hdg, 511u);     // heading n/a
+  EXPECT_EQ(d.status, 5u);    // moored
   // Heading 359.6 deg rounds to 0 (never 360), COG -0.01 deg is 359.99 -> 0.0 (never 360.0).
   m.heading = geo::deg2rad(-0.4);
   m.cog = geo::deg2rad(-0.01);
@@ -1195,8 +1166,7 @@ TEST(Devices, AisTargetNotAvailableValues) {
   const auto l2 = dev.ais_target(m, tc, sec(2));
   ASSERT_EQ(l2.size(), 1u);
   const Vdm v2 = parse_vdm(l2[0]);
-  AisBits b2;
-  append_payload(&b2, v2.payload, v2.fill);
+  const mpgc::testing::AisBits b2(v2.payload, v2.fill);
   EXPECT_EQ(b2.u(128, 9), 0u);
   EXPECT_EQ(b2.u(116, 12), 0u);
   EXPECT_EQ(b2.s(42, 8), -126);
@@ -1212,16 +1182,16 @@ TEST(Devices, AisOwnShip) {
   EXPECT_EQ(lines[0].rfind("!AIVDO,", 0), 0u) << lines[0];
   const Vdm v = parse_vdm(lines[0]);
   EXPECT_TRUE(v.own);
-  AisBits b;
-  append_payload(&b, v.payload, v.fill);
-  ASSERT_EQ(b.b.size(), 168u);
-  EXPECT_EQ(b.u(0, 6), 1u);
-  EXPECT_EQ(b.u(8, 30), 257999999u);
+  const mpgc::testing::AisBits b(v.payload, v.fill);
+  ASSERT_EQ(b.size(), 168u);
+  const mpgc::testing::AisType1 d = mpgc::testing::ais_type1(b);
+  EXPECT_EQ(d.type, 1u);
+  EXPECT_EQ(d.mmsi, 257999999u);
   const geo::LatLon ll = frame.to_latlon({m.x, m.y});
-  EXPECT_NEAR(b.s(89, 27) / 600000.0, geo::rad2deg(ll.lat), 0.5 / 600000 + 1e-12);
-  EXPECT_NEAR(b.s(61, 28) / 600000.0, geo::rad2deg(ll.lon), 0.5 / 600000 + 1e-12);
-  EXPECT_EQ(b.u(128, 9), 10u);
-  EXPECT_EQ(b.u(116, 12), 120u);
+  EXPECT_NEAR(d.lat / 600000.0, geo::rad2deg(ll.lat), 0.5 / 600000 + 1e-12);
+  EXPECT_NEAR(d.lon / 600000.0, geo::rad2deg(ll.lon), 0.5 / 600000 + 1e-12);
+  EXPECT_EQ(d.hdg, 10u);
+  EXPECT_EQ(d.cog, 120u);
 }
 
 TEST(Devices, OrderLinesSaturatedCountedAndFiltered) {
