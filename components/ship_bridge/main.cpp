@@ -3,6 +3,7 @@
 // talker and decodes neither THS nor ROT), rudder/engine orders out and their feedback in on the
 // actuator wire (README "Putting mpgc on a boat"). Publishes nav/own_state (validity explicit:
 // an invalid field is NaN and its NAV_*_VALID bit is clear) and sensors/ais per target.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -173,8 +174,12 @@ int main(int argc, char** argv) {
             ais_w.write(a);
             c.count("ais.reports");
           } else if (const auto* raw = std::get_if<sb::RawNmea>(&ev)) {
-            // Only what gpsd does not decode matters here (e.g. $TIROT, THS); the rest is TPV/AIS.
-            if (raw->line.size() > 6 && (raw->line.compare(3, 3, "ROT") == 0 || raw->line.compare(3, 3, "THS") == 0))
+            // What gpsd does not decode ($TIROT, THS) and the receiver's own verdict on its fix
+            // (GGA quality, RMC status: gpsd reports an RMC "V" cycle with a position as a 3-D fix).
+            // gpsd sends a cycle's raw sentences before its TPV, so the verdict applies to that TPV.
+            static const char* kUsed[] = {"ROT", "THS", "GGA", "RMC"};
+            if (raw->line.size() > 6 &&
+                std::any_of(std::begin(kUsed), std::end(kUsed), [&](const char* t) { return raw->line.compare(3, 3, t) == 0; }))
               apply_lines({raw->line}, "gpsd_nmea");
           } else if (std::holds_alternative<sb::DeviceEnd>(ev)) {
             c.log().warn("gpsd reports a device gone");

@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
       std::unique_ptr<mpgc::net::UdpSender> gnss, ais, gyro, feedback;
       std::unique_ptr<mpgc::net::UdpReceiver> orders;
       sim::DeviceOrders last;
-      int64_t last_order_ns = 0, next_gnss_ns = 0, next_own_ais_ns = 0;
+      int64_t next_gnss_ns = 0, next_own_ais_ns = 0;
       bool watchdog = false;
       std::map<std::string, uint64_t> seen;
     };
@@ -151,22 +151,18 @@ int main(int argc, char** argv) {
     }
     // Orders from the wire, and the steering gear's watchdog: without orders the rudder goes amidships.
     auto take_orders = [&, st, world, hil] {
-      hil->dev->on_order_lines(hil->orders->receive_lines(), world->own().max_rudder(), world->own().max_rpm(), &hil->last);
       const int64_t t = world->time_ns();
-      if (hil->dev->counters().count("orders.ror") && hil->dev->counters().at("orders.ror") != hil->seen["orders.ror"])
-        hil->last_order_ns = t;
+      hil->dev->on_order_lines(hil->orders->receive_lines(), t, world->own().max_rudder(), world->own().max_rpm(), &hil->last);
       for (const auto& [k, v] : hil->dev->counters())
         if (v > hil->seen[k]) c.count("hil." + k, v - hil->seen[k]), hil->seen[k] = v;
-      if (hil->last.rudder_seen) st->cmd.rudder = hil->last.rudder;
-      if (hil->last.rpm_seen) st->cmd.rpm = hil->last.rpm;
-      const bool silent = hil->last.rudder_seen && t - hil->last_order_ns > static_cast<int64_t>(p.order_timeout * 1e9);
-      if (silent) st->cmd.rudder = 0.0;
-      if (silent != hil->watchdog) {
-        hil->watchdog = silent;
-        if (silent) c.log().warn("actuator watchdog: no order for {} s, rudder amidships", p.order_timeout);
-        c.set_health(silent ? msg::HealthState::HEALTH_DEGRADED : msg::HealthState::HEALTH_OK,
-                     silent ? "actuator watchdog: no orders, rudder amidships" : "");
-        if (silent) c.count("hil.watchdog_trips");
+      const bool tripped = sim::follow_orders(hil->last, t, p.order_timeout, &st->cmd);
+      if (tripped != hil->watchdog) {
+        hil->watchdog = tripped;
+        if (tripped) c.log().warn("actuator watchdog: no order for {} s, rudder amidships", p.order_timeout);
+        else c.log().info("actuator watchdog: orders again");
+        c.set_health(tripped ? msg::HealthState::HEALTH_DEGRADED : msg::HealthState::HEALTH_OK,
+                     tripped ? "actuator watchdog: no orders, rudder amidships" : "");
+        if (tripped) c.count("hil.watchdog_trips");
       }
     };
     auto hil_outputs = [&, world, hil](const sim::SensorOutputs& out) {

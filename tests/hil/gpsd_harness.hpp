@@ -127,6 +127,33 @@ class GpsdProcess {
     return g;
   }
 
+  // As udp(), but on exactly the TCP port and UDP device ports given (no other ports tried), e.g.
+  // a gpsd that comes back where a client keeps reconnecting. Fails when one of them is taken.
+  static GpsdProcess udp_on(int tcp_port, const std::vector<int>& udp_ports) {
+    GpsdProcess g;
+    const std::string gpsd = find_exe("gpsd");
+    if (gpsd.empty()) return g.failed("gpsd is not installed: apt-get install gpsd gpsd-clients");
+    if (!g.make_dir()) return g;
+    g.port_ = tcp_port;
+    g.udp_ = udp_ports;
+    if (!port_free(tcp_port, true)) return g.failed("port " + std::to_string(tcp_port) + " in use");
+    for (int p : udp_ports)
+      if (!port_free(p, false)) return g.failed("port " + std::to_string(p) + " in use");
+    char key[32];
+    std::snprintf(key, sizeof key, "GPSD_SHM_KEY=0x4750%04X", g.port_ & 0xFFFF);
+    std::vector<std::string> cmd = {"env", key, gpsd, "-N", "-n", "-S", std::to_string(g.port_), "-F",
+                                    g.dir_ + "/ctl.sock"};
+    for (int p : udp_ports) cmd.push_back("udp://127.0.0.1:" + std::to_string(p));
+    if (!g.spawn(cmd)) return g;
+    bool up = g.wait_listening(8000);
+    for (size_t i = 0; up && i < udp_ports.size(); ++i) up = g.wait_bound(udp_ports[i], false, 2000);
+    if (!up) {
+      g.stop();
+      if (g.error_.empty()) g.error_ = "gpsd did not start";
+    }
+    return g;
+  }
+
   // gpsfake -1 -p -q -P <port> <log> (+ extra_args): replays the log once into its own gpsd. With
   // -p gpsfake watches itself, so the feed starts ~1.4 s after its port listens and a client that
   // connects at once gets every message (notes §1); its own JSON/NMEA output goes to stdout_path().

@@ -325,12 +325,62 @@ TEST(NavFusion, JumpRejectedUntilTheOldFixIsStale) {
   o = nav.state(sec(3.1));
   EXPECT_FALSE(o.position_valid);  // the last good fix went stale
   expect_position_nan(o);
-  // Now the relocated position is taken.
-  EXPECT_EQ(nav.on_fix(fix_ned(f, 1000.0, 0.0), sec(3.1)), "");
+  // The relocated position is taken only when a second fix agrees with it, so that the position
+  // is invalid in between even when the old fix goes stale just as a far fix arrives.
+  EXPECT_TRUE(contains(nav.on_fix(fix_ned(f, 1000.0, 0.0), sec(3.1)), "second fix"));
   o = nav.state(sec(3.1));
+  EXPECT_FALSE(o.position_valid);
+  EXPECT_TRUE(contains(o.why_invalid, "jumped")) << o.why_invalid;
+  EXPECT_EQ(count(nav.rejected(), "fix.unconfirmed"), 1u);
+  EXPECT_EQ(nav.on_fix(fix_ned(f, 1002.0, 0.0), sec(3.3)), "");
+  o = nav.state(sec(3.3));
   EXPECT_TRUE(o.position_valid) << o.why_invalid;
-  EXPECT_NEAR(o.x, 1000.0, 1e-6);
+  EXPECT_NEAR(o.x, 1002.0, 1e-6);
   EXPECT_EQ(count(nav.rejected(), "fix.jump"), 2u);
+}
+
+// A spurious far fix after a jump does not confirm the candidate: each disagreeing fix starts over.
+TEST(NavFusion, JumpCandidateNeedsAnAgreeingSecondFix) {
+  sb::NavParams p;
+  sb::NavFusion nav(p, kOrigin);
+  const geo::LocalNed f(kOrigin);
+  ASSERT_EQ(nav.on_fix(fix_ned(f, 0.0, 0.0), sec(0)), "");
+  EXPECT_FALSE(nav.on_fix(fix_ned(f, 5000.0, 0.0), sec(1)).empty());
+  EXPECT_FALSE(nav.on_fix(fix_ned(f, 5000.0, 0.0), sec(3.5)).empty());   // candidate
+  EXPECT_FALSE(nav.on_fix(fix_ned(f, -5000.0, 0.0), sec(3.7)).empty());  // disagrees: new candidate
+  EXPECT_FALSE(nav.state(sec(3.7)).position_valid);
+  EXPECT_FALSE(nav.on_fix(fix_ned(f, -5000.0, 0.0), sec(3.7)).empty()) << "a fix of the same poll is no confirmation";
+  EXPECT_FALSE(nav.state(sec(3.7)).position_valid);
+  EXPECT_EQ(nav.on_fix(fix_ned(f, -4999.0, 0.0), sec(3.9)), "");
+  EXPECT_TRUE(nav.state(sec(3.9)).position_valid);
+  EXPECT_NEAR(nav.state(sec(3.9)).x, -4999.0, 1e-6);
+}
+
+// The receiver's own verdict (RMC V / GGA quality 0 from gpsd's raw NMEA) makes the position invalid
+// at once although gpsd still reports a 3-D fix with a position, until a valid verdict comes.
+TEST(NavFusion, ReceiverInvalidVerdictOverridesGpsdMode) {
+  sb::NavParams p;
+  sb::NavFusion nav(p, kOrigin);
+  const geo::LocalNed f(kOrigin);
+  ASSERT_EQ(nav.on_fix(fix_ned(f, 0.0, 0.0), sec(0)), "");
+  ASSERT_TRUE(nav.state(sec(0)).position_valid);
+  std::string kind;
+  EXPECT_EQ(sb::apply_nmea_line(nmea::rmc("GP", nmea::FixData{0, 59.0, 10.0, 5.0, 90.0, 0}), nav, sec(0.2), &kind), "");
+  EXPECT_EQ(kind, "RMC");
+  sb::NavOutput o = nav.state(sec(0.2));
+  EXPECT_FALSE(o.position_valid);
+  expect_position_nan(o);
+  EXPECT_TRUE(contains(o.why_invalid, "no fix")) << o.why_invalid;
+  EXPECT_FALSE(nav.on_fix(fix_ned(f, 1.0, 0.0), sec(0.2)).empty()) << "a TPV after the V verdict";
+  EXPECT_FALSE(nav.state(sec(0.2)).position_valid);
+  EXPECT_GE(count(nav.rejected(), "fix.no_fix"), 1u);
+  // A valid GGA clears it; the next TPV is taken.
+  EXPECT_EQ(sb::apply_nmea_line(nmea::gga("GP", nmea::FixData{0, 59.0, 10.0, 5.0, 90.0, 1}), nav, sec(0.4), &kind), "");
+  EXPECT_EQ(nav.on_fix(fix_ned(f, 2.0, 0.0), sec(0.4)), "");
+  EXPECT_TRUE(nav.state(sec(0.4)).position_valid);
+  // GGA quality 0 alone is enough too.
+  sb::apply_nmea_line(nmea::gga("GP", nmea::FixData{0, 59.0, 10.0, 5.0, 90.0, 0}), nav, sec(0.6), &kind);
+  EXPECT_FALSE(nav.state(sec(0.6)).position_valid);
 }
 
 TEST(NavFusion, JumpLimitScalesWithTime) {
@@ -931,10 +981,12 @@ TEST(ApplyNmeaLine, UnknownSentenceTypeReported) {
   f.utc_ns = 1733011200LL * 1'000'000'000;
   f.lat_deg = 59.9;
   f.lon_deg = 10.7;
-  const std::string why = sb::apply_nmea_line(nmea::gga("GP", f), nav, sec(1), &kind);
+  // VTG is gpsd's (merged into TPV), not this path's. (GGA and RMC are used here: their quality and
+  // status are the receiver's verdict, ReceiverInvalidVerdictOverridesGpsdMode.)
+  const std::string why = sb::apply_nmea_line(nmea::vtg("GP", f), nav, sec(1), &kind);
   EXPECT_FALSE(why.empty());
-  EXPECT_EQ(kind, "GGA");
-  EXPECT_FALSE(nav.state(sec(1)).position_valid);  // GGA is gpsd's, not this path's
+  EXPECT_EQ(kind, "VTG");
+  EXPECT_FALSE(nav.state(sec(1)).position_valid);
   const std::string why2 = sb::apply_nmea_line(nmea::frame('$', "IIXDR,C,19.5,C,AIR"), nav, sec(1), &kind);
   EXPECT_FALSE(why2.empty());
   EXPECT_EQ(kind, "XDR");
@@ -1199,7 +1251,7 @@ TEST(Devices, OrderLinesSaturatedCountedAndFiltered) {
   const double max_rudder = geo::deg2rad(35.0), max_rpm = 100.0;
   const auto c = [&](const std::string& k) { return count(dev.counters(), k); };
   sim::DeviceOrders o;
-  dev.on_order_lines({nmea::ror("AG", 10.0), nmea::prc("AG", 80.0)}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({nmea::ror("AG", 10.0), nmea::prc("AG", 80.0)}, 0, max_rudder, max_rpm, &o);
   EXPECT_TRUE(o.rudder_seen);
   EXPECT_TRUE(o.rpm_seen);
   EXPECT_NEAR(o.rudder, geo::deg2rad(10.0), 1e-12);
@@ -1208,33 +1260,33 @@ TEST(Devices, OrderLinesSaturatedCountedAndFiltered) {
   EXPECT_EQ(c("orders.ror"), 1u);
   EXPECT_EQ(c("orders.prc"), 1u);
   // Exactly at the limit: not saturated.
-  dev.on_order_lines({nmea::ror("AG", 35.0), nmea::prc("AG", 100.0)}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({nmea::ror("AG", 35.0), nmea::prc("AG", 100.0)}, 0, max_rudder, max_rpm, &o);
   EXPECT_EQ(c("orders.saturated"), 0u);
   EXPECT_NEAR(o.rudder, max_rudder, 1e-12);
   // Beyond: clipped and counted.
-  dev.on_order_lines({nmea::ror("AG", -40.0)}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({nmea::ror("AG", -40.0)}, 0, max_rudder, max_rpm, &o);
   EXPECT_DOUBLE_EQ(o.rudder, -max_rudder);
   EXPECT_EQ(c("orders.saturated"), 1u);
-  dev.on_order_lines({nmea::prc("AG", 120.0)}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({nmea::prc("AG", 120.0)}, 0, max_rudder, max_rpm, &o);
   EXPECT_DOUBLE_EQ(o.rpm, max_rpm);
   EXPECT_EQ(c("orders.saturated"), 2u);
-  dev.on_order_lines({nmea::prc("AG", -5.0)}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({nmea::prc("AG", -5.0)}, 0, max_rudder, max_rpm, &o);
   EXPECT_DOUBLE_EQ(o.rpm, 0.0);
   EXPECT_EQ(c("orders.saturated"), 3u);
   // A bad checksum: counted, not used.
   std::string bad = nmea::ror("AG", 5.0);
   bad[bad.find('*') + 1] = bad[bad.find('*') + 1] == '0' ? '1' : '0';
-  dev.on_order_lines({bad, "garbage"}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({bad, "garbage"}, 0, max_rudder, max_rpm, &o);
   EXPECT_EQ(c("orders.bad_sentence"), 2u);
   EXPECT_DOUBLE_EQ(o.rudder, -max_rudder);
   // Invalid ROR/PRC (status V): counted by type, not used.
-  dev.on_order_lines({nmea::ror("AG", kNan), nmea::prc("AG", kNan)}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({nmea::ror("AG", kNan), nmea::prc("AG", kNan)}, 0, max_rudder, max_rpm, &o);
   EXPECT_EQ(c("orders.bad_ror"), 1u);
   EXPECT_EQ(c("orders.bad_prc"), 1u);
   EXPECT_DOUBLE_EQ(o.rudder, -max_rudder);
   EXPECT_DOUBLE_EQ(o.rpm, 0.0);
   // Other sentence types are ignored.
-  dev.on_order_lines({nmea::hdt("HE", 10.0), nmea::rsa("ER", 3.0)}, max_rudder, max_rpm, &o);
+  dev.on_order_lines({nmea::hdt("HE", 10.0), nmea::rsa("ER", 3.0)}, 0, max_rudder, max_rpm, &o);
   EXPECT_EQ(c("orders.ignored"), 2u);
   EXPECT_DOUBLE_EQ(o.rudder, -max_rudder);
   EXPECT_EQ(c("orders.ror"), 3u);
@@ -1243,8 +1295,30 @@ TEST(Devices, OrderLinesSaturatedCountedAndFiltered) {
   bool sat = false;
   const std::string orders = sb::encode_orders(geo::deg2rad(50.0), 90.0, sb::ActuatorLimits{max_rudder, 0.0, 150.0}, &sat);
   EXPECT_TRUE(sat);
-  dev.on_order_lines(split_lines(orders), max_rudder, max_rpm, &o);
+  dev.on_order_lines(split_lines(orders), 0, max_rudder, max_rpm, &o);
   EXPECT_NEAR(o.rudder, max_rudder, 1e-12);
   EXPECT_DOUBLE_EQ(o.rpm, 90.0);
   EXPECT_EQ(c("orders.saturated"), 3u);
+}
+
+// The steering gear's watchdog: orders are followed while they come; after the timeout without a
+// rudder order the rudder goes amidships and the engine order is held; a new order resumes.
+TEST(Devices, ActuatorWatchdogRudderAmidshipsEngineHeld) {
+  sim::Devices dev(geo::LocalNed({geo::deg2rad(59.0), geo::deg2rad(10.0)}), 0);
+  sim::DeviceOrders o;
+  sim::ShipCommand cmd{0.1, 95.0};
+  EXPECT_FALSE(sim::follow_orders(o, 5'000'000'000, 2.0, &cmd)) << "no order yet: nothing to watch";
+  EXPECT_DOUBLE_EQ(cmd.rudder, 0.1);
+  EXPECT_DOUBLE_EQ(cmd.rpm, 95.0);
+  const double lim = geo::deg2rad(35.0);
+  dev.on_order_lines({nmea::ror("AG", 20.0), nmea::prc("AG", 80.0)}, 10'000'000'000, lim, 150.0, &o);
+  EXPECT_FALSE(sim::follow_orders(o, 11'900'000'000, 2.0, &cmd));
+  EXPECT_NEAR(cmd.rudder, geo::deg2rad(20.0), 1e-12);
+  EXPECT_DOUBLE_EQ(cmd.rpm, 80.0);
+  EXPECT_TRUE(sim::follow_orders(o, 12'100'000'000, 2.0, &cmd)) << "2.1 s without an order";
+  EXPECT_DOUBLE_EQ(cmd.rudder, 0.0);
+  EXPECT_DOUBLE_EQ(cmd.rpm, 80.0) << "the engine order is held";
+  dev.on_order_lines({nmea::ror("AG", -5.0)}, 13'000'000'000, lim, 150.0, &o);
+  EXPECT_FALSE(sim::follow_orders(o, 13'100'000'000, 2.0, &cmd));
+  EXPECT_NEAR(cmd.rudder, geo::deg2rad(-5.0), 1e-12);
 }

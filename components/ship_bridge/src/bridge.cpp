@@ -59,6 +59,10 @@ std::string NavFusion::on_fix(const GnssFix& f, int64_t now) {
     fix_t_ = -1;
     return reject("fix.2d", "2-D fix where 3-D is required");
   }
+  if (receiver_invalid_) {
+    fix_t_ = -1;
+    return reject("fix.no_fix", "the receiver flags its fix invalid (RMC status V / GGA quality 0)");
+  }
   if (!std::isfinite(f.lat_deg) || !std::isfinite(f.lon_deg))
     return reject("fix.not_finite", "fix without a finite latitude/longitude");
   if (std::abs(f.lat_deg) > 90.0 || std::abs(f.lon_deg) > 180.0)
@@ -70,10 +74,24 @@ std::string NavFusion::on_fix(const GnssFix& f, int64_t now) {
   // A jump no ship can make: further than max_speed over the time since the last good fix. Once
   // that fix is stale the new position is taken (the fix stayed invalid meanwhile), so a real
   // relocation after an outage is not rejected for ever.
+  const auto reach = [&](int64_t since) { return p_.max_speed * std::max(age_s(since, now), 0.0) + p_.jump_margin; };
   if (fix_t_ >= 0 && fresh(fix_t_, now, p_.fix_timeout)) {
     const double d = std::hypot(ne.x - x_, ne.y - y_);
-    const double reach = p_.max_speed * std::max(age_s(fix_t_, now), 0.0) + p_.jump_margin;
-    if (d > reach) return reject("fix.jump", "position jumped " + fmt1(d) + " m (at most " + fmt1(reach) + " m possible)");
+    if (d > reach(fix_t_)) {
+      jump_pending_ = true;
+      candidate_.reset();
+      return reject("fix.jump", "position jumped " + fmt1(d) + " m (at most " + fmt1(reach(fix_t_)) + " m possible)");
+    }
+  } else if (jump_pending_) {
+    // The second fix must be a later one: what arrives together (one poll) is not a confirmation.
+    const bool agrees = candidate_ && now > candidate_->second &&
+                        std::hypot(ne.x - candidate_->first.x, ne.y - candidate_->first.y) <= reach(candidate_->second);
+    if (!agrees) {
+      if (!candidate_ || now > candidate_->second) candidate_ = std::make_pair(ne, now);
+      return reject("fix.unconfirmed", "new position after a jump: waiting for a second fix that agrees");
+    }
+    jump_pending_ = false;
+    candidate_.reset();
   }
   lat_ = ll.lat, lon_ = ll.lon, x_ = ne.x, y_ = ne.y, fix_t_ = now;
   std::string why;
@@ -82,6 +100,12 @@ std::string NavFusion::on_fix(const GnssFix& f, int64_t now) {
   if (std::isfinite(f.track_deg) && f.track_deg >= -360 && f.track_deg <= 360) cog_ = {geo::wrap_pi(geo::deg2rad(f.track_deg)), now};
   else if (!std::isnan(f.track_deg)) why = reject("fix.cog", "COG " + std::to_string(f.track_deg) + " deg out of range");
   return why;
+}
+
+void NavFusion::on_receiver_status(bool valid, int64_t /*now*/) {
+  if (!valid && !receiver_invalid_) ++rejected_["fix.receiver_invalid"];
+  receiver_invalid_ = !valid;
+  if (!valid) fix_t_ = -1;
 }
 
 std::string NavFusion::on_heading(double deg, int64_t now) {
@@ -119,8 +143,10 @@ NavOutput NavFusion::state(int64_t now) const {
   const auto add = [&why](const std::string& s) { why += (why.empty() ? "" : "; ") + s; };
   o.position_valid = fresh(fix_t_, now, p_.fix_timeout) && frame_;
   if (!o.position_valid) {
-    if (last_any_fix_t_ < 0) add("no fix yet");
+    if (receiver_invalid_) add("no fix");
+    else if (last_any_fix_t_ < 0) add("no fix yet");
     else if (fix_mode_ < 2) add("no fix");
+    else if (jump_pending_) add("position jumped");
     else if (fix_mode_ == 2 && p_.require_3d) add("2-D fix");
     else add("position stale");  // no ages here: health repeats this text only when it changes
   }
@@ -220,6 +246,15 @@ std::string apply_nmea_line(const std::string& line, NavFusion& nav, int64_t now
   if (s->type == "ROT") {
     const auto r = nmea::parse_rot(*s, &why);
     return r ? nav.on_rate_of_turn(r->rot_deg_min, now) : why;
+  }
+  // The receiver's verdict: GGA field 6 (quality, 0 = invalid), RMC field 2 (status A/V).
+  if (s->type == "GGA" && s->fields.size() > 5) {
+    nav.on_receiver_status(!s->fields[5].empty() && s->fields[5] != "0", now);
+    return "";
+  }
+  if (s->type == "RMC" && s->fields.size() > 1) {
+    nav.on_receiver_status(s->fields[1] == "A", now);
+    return "";
   }
   if (s->type == "RSA") {
     const auto r = nmea::parse_rsa(*s, &why);

@@ -94,7 +94,16 @@ std::vector<std::string> Devices::ais_own(uint32_t own_mmsi, const NavMeasuremen
   return ais::sentences(ais::encode(r), 'A', 0, true);
 }
 
-void Devices::on_order_lines(const std::vector<std::string>& lines, double max_rudder, double max_rpm, DeviceOrders* o) {
+bool follow_orders(const DeviceOrders& o, int64_t t_ns, double timeout_s, ShipCommand* cmd) {
+  if (o.rpm_seen) cmd->rpm = o.rpm;
+  if (!o.rudder_seen) return false;
+  const bool tripped = static_cast<double>(t_ns - o.rudder_ns) * 1e-9 > timeout_s;
+  cmd->rudder = tripped ? 0.0 : o.rudder;
+  return tripped;
+}
+
+void Devices::on_order_lines(const std::vector<std::string>& lines, int64_t t_ns, double max_rudder, double max_rpm,
+                             DeviceOrders* o) {
   for (const auto& l : lines) {
     std::string why;
     const auto s = nmea::parse(l, &why);
@@ -112,6 +121,7 @@ void Devices::on_order_lines(const std::vector<std::string>& lines, double max_r
       o->rudder = std::clamp(want, -max_rudder, max_rudder);
       if (o->rudder != want) ++counters_["orders.saturated"];
       o->rudder_seen = true;
+      o->rudder_ns = t_ns;
       ++counters_["orders.ror"];
     } else if (s->type == "PRC") {
       const auto n = nmea::parse_prc(*s, &why);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <utility>
 #include <string>
 
 #include "mpgc/geo/geodesy.hpp"
@@ -45,6 +46,10 @@ class NavFusion {
 
   // Each returns "" when the input was used, else why it was rejected (and counts it).
   std::string on_fix(const GnssFix& f, int64_t now_ns);
+  // The receiver's own verdict on its fix (GGA quality, RMC status, from gpsd's raw NMEA): gpsd
+  // 3.22 reports an RMC "V" / GGA quality 0 cycle that still carries a position as a 3-D fix, so
+  // an invalid verdict makes the position invalid at once and until a valid verdict comes.
+  void on_receiver_status(bool valid, int64_t now_ns);
   std::string on_heading(double heading_deg, int64_t now_ns);
   std::string on_rate_of_turn(double rot_deg_min, int64_t now_ns);
   std::string on_rudder(double rudder_deg, int64_t now_ns);
@@ -64,6 +69,11 @@ class NavFusion {
   struct Stamped { double v = 0; int64_t t = -1; };
   int fix_mode_ = 0;
   int64_t fix_t_ = -1, last_any_fix_t_ = -1;
+  bool receiver_invalid_ = false;
+  // After a rejected jump: the new place is taken only once the old fix is stale and a second fix
+  // agrees with the first, so consumers always see the position invalid in between.
+  bool jump_pending_ = false;
+  std::optional<std::pair<geo::NorthEast, int64_t>> candidate_;
   double lat_ = 0, lon_ = 0, x_ = 0, y_ = 0;
   Stamped sog_, cog_, heading_, rot_, rudder_, rpm_;
   std::map<std::string, uint64_t> rejected_;
@@ -109,8 +119,8 @@ struct ActuatorLimits {
 // *saturated says whether an order was clipped. Non-finite inputs give "" (never sent).
 std::string encode_orders(double rudder_rad, double rpm, const ActuatorLimits& lim, bool* saturated);
 
-// What a line from the gyro compass or the actuator feedback wire (HDT, THS, ROT, RSA, RPM, any
-// talker) means for NavFusion: applies it and returns "" or why it was not used; *kind names the
+// What a line from the gyro compass, the actuator feedback wire or gpsd's raw NMEA (HDT, THS, ROT,
+// RSA, RPM, and the receiver's GGA quality / RMC status; any talker) means for NavFusion: applies it and returns "" or why it was not used; *kind names the
 // sentence type ("HDT", ...) or "" when the line did not parse.
 std::string apply_nmea_line(const std::string& line, NavFusion& nav, int64_t now_ns, std::string* kind);
 

@@ -11,6 +11,7 @@
 
 #include "mpgc/geo/geodesy.hpp"
 #include "mpgc/ship_simulator/sensors.hpp"
+#include "mpgc/ship_simulator/ship_model.hpp"
 #include "mpgc/ship_simulator/targets.hpp"
 
 namespace mpgc::ship_simulator {
@@ -19,7 +20,14 @@ struct DeviceOrders {
   double rudder = 0.0;  // [rad] latest rudder order, positive to starboard
   double rpm = 0.0;     // [1/min] latest shaft speed order
   bool rudder_seen = false, rpm_seen = false;
+  int64_t rudder_ns = 0;  // [ns] when the latest rudder order came
 };
+
+// The steering gear's watchdog, as real steering gear has one: the command the actuators follow
+// at t_ns. Before any order, `cmd` is left as it is; without a rudder order for timeout_s the
+// rudder goes amidships while the engine order is held (a telegraph keeps its setting). Returns
+// true while the watchdog has tripped.
+bool follow_orders(const DeviceOrders& o, int64_t t_ns, double timeout_s, ShipCommand* cmd);
 
 class Devices {
  public:
@@ -39,7 +47,8 @@ class Devices {
 
   // Orders from the autopilot wire (ROR rudder, PRC rpm). Orders beyond the limits are
   // saturated (counted in "orders.saturated"), bad lines counted by reason and not used.
-  void on_order_lines(const std::vector<std::string>& lines, double max_rudder, double max_rpm, DeviceOrders* o);
+  void on_order_lines(const std::vector<std::string>& lines, int64_t t_ns, double max_rudder, double max_rpm,
+                      DeviceOrders* o);
   const std::map<std::string, uint64_t>& counters() const { return counters_; }
 
  private:
