@@ -59,3 +59,17 @@ TEST(LaunchFile, ErrorsNameLineAndField) {
   EXPECT_NE(error_of("components:\n  - {name: a, executable: x, max_restarts: many}\n").find("max_restarts"),
             std::string::npos);
 }
+
+// Every launch file shipped in deploy/launch/ parses (the vessel's included: it is not run by a test).
+TEST(LaunchFile, ShippedLaunchFilesParse) {
+  const std::string dir = std::string(MPGC_SOURCE_DIR_FOR_TESTS) + "/deploy/launch";
+  int n = 0;
+  for (const char* f : {"demo.yaml", "vessel.yaml"}) {
+    SCOPED_TRACE(f);
+    mpgc::launch::LaunchFile lf;
+    EXPECT_NO_THROW(lf = mpgc::launch::load(dir + "/" + f, "/bin"));
+    EXPECT_FALSE(lf.components.empty());
+    ++n;
+  }
+  EXPECT_EQ(n, 2);
+}
