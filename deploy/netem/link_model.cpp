@@ -87,18 +87,14 @@ ParseResult parse_options(const std::vector<std::string>& args) {
       if (!parse_u64(value, o.seed)) return fail(bad + "expected an integer 0..18446744073709551615");
       o.seed_set = true;
     } else {
+      const bool ms = name == "--delay-ms" || name == "--jitter-ms", pct = name == "--loss";
+      const std::string expected = ms    ? "expected a number of milliseconds 0..60000 (no unit suffix)"
+                                   : pct ? "expected a percentage 0..100 (no % sign)"
+                                         : "expected a number of seconds 0..31536000 (no unit suffix)";
       double v;
-      if (!parse_double(value, v)) return fail(bad + "expected a number");
-      if (name == "--delay-ms" || name == "--jitter-ms") {
-        if (v < 0 || v > kMaxDelayMs) return fail(bad + "expected milliseconds 0..60000");
-        (name == "--delay-ms" ? o.delay_ms : o.jitter_ms) = v;
-      } else if (name == "--loss") {
-        if (v < 0 || v > 100) return fail(bad + "expected a percentage 0..100");
-        o.loss_pct = v;
-      } else {  // --duration
-        if (v < 0 || v > kMaxDurationS) return fail(bad + "expected seconds 0..31536000");
-        o.duration_s = v;
-      }
+      if (!parse_double(value, v) || v < 0 || v > (ms ? kMaxDelayMs : pct ? 100 : kMaxDurationS))
+        return fail(bad + expected);
+      (name == "--delay-ms" ? o.delay_ms : name == "--jitter-ms" ? o.jitter_ms : pct ? o.loss_pct : o.duration_s) = v;
     }
   }
   if (o.help) return {o, ""};
