@@ -12,8 +12,10 @@ PACKAGES=(
   libgeographiclib-dev libgdal-dev libompl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev
-  # multi-host tests (network namespaces)
-  iproute2
+  # multi-host tests: network namespaces, loss and delay (iptables + an NFQUEUE delayer: this kernel
+  # has no netem), packet captures; containers (podman on runc, a base image made with debootstrap);
+  # DDS Security (openssl makes and signs the certificates and documents)
+  iproute2 iptables libnetfilter-queue-dev tcpdump podman runc debootstrap openssl
   # hardware in the loop: gpsd and libgps for the ship bridge, gpsfake (gpsd-clients) for the log replays
   gpsd gpsd-clients libgps-dev
 )

@@ -17,6 +17,8 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <thread>
@@ -24,6 +26,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/null_sink.h>
 
+#include "deployment.hpp"
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/control.hpp"
 #include "mpgc/msg/nav.hpp"
@@ -34,12 +37,14 @@
 #include "mpgc/scenario_runner/report.hpp"
 #include "mpgc/scenario_runner/scenario.hpp"
 #include "mpgc/topics.hpp"
+#include "netns.hpp"
 
 namespace fs = std::filesystem;
 namespace sr = mpgc::scenario_runner;
 namespace msg = mpgc::msg;
 namespace rt = mpgc::rt;
 namespace dds = mpgc::dds;
+namespace dp = mpgc::deploy;
 using Steady = std::chrono::steady_clock;
 
 namespace {
@@ -52,6 +57,13 @@ struct Options {
   double record_period = 1.0;    // [s] simulated
   bool quiet = false;
   bool hil = false;              // hardware in the loop: simulator -> NMEA -> gpsd -> ship_bridge
+  // Across a ship's network: the components on the hosts of a deployment, as network namespaces.
+  std::optional<dp::Deployment> hosts;
+  dp::LinkSpec link;             // on every host's egress
+  uint64_t link_seed = 1;
+  std::vector<dp::LinkCut> cuts;
+  bool capture = false;          // tcpdump of every host to <run>/network/<host>.pcap
+  std::string secure;            // DDS Security: the folder made by deploy/security/make-pki.sh
 };
 
 // Hardware in the loop: the default real-time factor (gpsd runs on the wall clock) and an MMSI for
@@ -103,7 +115,15 @@ std::string yaml_str(const std::string& s) {
 }
 
 // The launch file for one run: the simulator plus the four autonomy components on simulated time.
-std::string launch_file(const sr::Scenario& s, const std::string& world_path, const Options& o, int domain) {
+// Where a component runs when the run is spread over a deployment's hosts: its network namespace
+// and its host's Cyclone configuration.
+struct Placement {
+  const dp::NetnsLab* lab = nullptr;
+  std::string network_dir;  // <run>/network: <host>/cyclonedds.xml
+};
+
+std::string launch_file(const sr::Scenario& s, const std::string& world_path, const Options& o, int domain,
+                        const Placement& where) {
   std::map<std::string, std::map<std::string, std::string>> set;
   auto& sim = set["ship_simulator"];
   sim["world.file"] = world_path;
@@ -182,13 +202,19 @@ std::string launch_file(const sr::Scenario& s, const std::string& world_path, co
   std::vector<std::string> comps = {"ship_simulator", "situational_awareness", "obstacle_manager", "opp", "guidance_control"};
   if (o.hil) comps.insert(comps.begin() + 1, "ship_bridge");
   for (const auto& c : comps) {
-    y << "  - name: " << c << "\n    executable: mpgc_" << c << "\n    set:\n";
+    y << "  - name: " << c << "\n    executable: mpgc_" << c << "\n";
+    if (where.lab != nullptr) {
+      const dp::Host* h = o.hosts->host_of(c);
+      y << "    host: " << where.lab->ns(h->name) << "\n    env: {CYCLONEDDS_URI: "
+        << yaml_str("file://" + where.network_dir + "/" + h->name + "/cyclonedds.xml") << "}\n";
+    }
+    y << "    set:\n";
     for (const auto& [k, v] : set[c]) y << "      " << k << ": " << yaml_str(v) << "\n";
   }
   return y.str();
 }
 
-pid_t start_launcher(const std::string& launch, int domain, const std::string& log_path) {
+pid_t start_launcher(const std::string& launch, int domain, const std::string& log_path, const std::string& secure) {
   const std::string exe = (fs::canonical("/proc/self/exe").parent_path() / "mpgc_launch").string();
   const pid_t pid = fork();
   if (pid == 0) {
@@ -199,7 +225,8 @@ pid_t start_launcher(const std::string& launch, int domain, const std::string& l
       dup2(fd, STDERR_FILENO);
     }
     const std::string d = std::to_string(domain);
-    execl(exe.c_str(), exe.c_str(), launch.c_str(), "--domain", d.c_str(), nullptr);
+    if (secure.empty()) execl(exe.c_str(), exe.c_str(), launch.c_str(), "--domain", d.c_str(), nullptr);
+    else execl(exe.c_str(), exe.c_str(), launch.c_str(), "--domain", d.c_str(), "--secure", secure.c_str(), nullptr);
     _exit(127);
   }
   return pid;
@@ -224,7 +251,19 @@ struct Outcome {
   bool ran = false;
   sr::Metrics metrics;
   std::string error;
+  std::vector<std::string> notes;  // what the network did (cuts, netem)
 };
+
+std::string num_text(double v, const char* f = "%.0f");
+
+// The Cyclone configuration this process was started with (./mpgc exports loopback.xml).
+std::string base_cyclone_uri() {
+  static const std::string uri = [] {
+    const char* u = std::getenv("CYCLONEDDS_URI");
+    return std::string(u != nullptr ? u : "");
+  }();
+  return uri;
+}
 
 Outcome run_one(const sr::Scenario& s, const Options& o) {
   Outcome out;
@@ -241,8 +280,38 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   }
   const DomainLease lease;  // released when this run is over (a suite used to run out after 30)
   const int domain = lease.id();
+
+  // On a deployment's hosts: the namespaces, each host's Cyclone configuration, and this process
+  // (the evaluator) moved onto its own host before it joins the bus.
+  std::unique_ptr<dp::NetnsLab> lab;
+  Placement where;
+  std::string cyclone_uri = base_cyclone_uri();
+  const fs::path net_dir = fs::absolute(dir / "network");
+  if (o.hosts) {
+    fs::create_directories(net_dir);
+    for (const auto& h : o.hosts->hosts) {
+      fs::create_directories(net_dir / h.name);
+      std::ofstream(net_dir / h.name / "cyclonedds.xml") << dp::cyclone_config(*o.hosts, h);
+    }
+    dp::LabOptions lo;
+    lo.link = o.link;
+    lo.seed = o.link_seed;
+    lo.netem_exe = (fs::canonical("/proc/self/exe").parent_path() / "mpgc_netem").string();
+    lo.capture_dir = o.capture ? net_dir.string() : "";
+    lo.log_dir = net_dir.string();
+    lab = std::make_unique<dp::NetnsLab>(*o.hosts, lo);
+    const std::string runner_host = o.hosts->host_of("scenario_runner")->name;
+    lab->enter(runner_host);
+    where = {lab.get(), net_dir.string()};
+    cyclone_uri = "file://" + (net_dir / runner_host / "cyclonedds.xml").string();
+  }
+  if (!o.secure.empty()) {
+    cyclone_uri += ",file://" + o.secure + "/security.xml";
+    setenv("MPGC_SECURITY_ID", "scenario_runner", 1);
+  }
+  setenv("CYCLONEDDS_URI", cyclone_uri.c_str(), 1);
   const std::string launch_path = fs::absolute(dir / "launch.yaml").string();
-  std::ofstream(launch_path) << launch_file(s, world_path, o, domain);
+  std::ofstream(launch_path) << launch_file(s, world_path, o, domain, where);
 
   rt::RuntimeParams rp;
   rp.domain = domain;
@@ -313,6 +382,17 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   goal.colreg = s.colreg;
   goal_w.write(goal);
 
+  // Link cuts: each begins when the simulated clock reaches it and lasts its wall-clock time.
+  struct CutState {
+    dp::LinkCut cut;
+    bool begun = false, ended = false;
+    Steady::time_point wall_begin{};
+    double sim_begin = 0, sim_end = 0;
+  };
+  std::vector<CutState> cuts;
+  for (const auto& k : o.cuts) cuts.push_back({k});
+  std::mutex cut_mutex;
+
   std::string end_reason;
   const auto wall_start = Steady::now();
   auto last_print = wall_start;
@@ -320,6 +400,16 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     if (!have_truth) return;
     const double t = c.clock().now_s();
     if (!run.t.empty() && t <= run.t.back()) return;
+    {
+      std::lock_guard<std::mutex> g(cut_mutex);
+      for (auto& k : cuts)
+        if (!k.begun && t >= k.cut.at_s) {
+          lab->set_cut(k.cut.host, true);
+          k.begun = true, k.wall_begin = Steady::now(), k.sim_begin = t;
+          if (!o.quiet) std::printf("  %-28s sim %6.0f s  network: %s cut off for %.1f s\n", s.name.c_str(), t,
+                                    k.cut.host.c_str(), k.cut.duration_s);
+        }
+    }
     if (run.t.empty()) {
       run.own.id = 0;
       run.own.length = truth.own.length > 0 ? truth.own.length : s.lpp;
@@ -351,7 +441,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     }
   });
 
-  const pid_t launcher = start_launcher(launch_path, domain, (dir / "components.log").string());
+  const pid_t launcher = start_launcher(launch_path, domain, (dir / "components.log").string(), o.secure);
   // A wall-clock watchdog: the simulated clock stops if a component dies, so only wall time can tell.
   std::atomic<bool> done{false};
   std::thread watchdog([&] {
@@ -359,6 +449,15 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     auto last_progress = Steady::now();
     while (!done) {
       std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      {
+        std::lock_guard<std::mutex> g(cut_mutex);
+        for (auto& k : cuts)
+          if (k.begun && !k.ended && Steady::now() - k.wall_begin >= std::chrono::duration<double>(k.cut.duration_s)) {
+            lab->set_cut(k.cut.host, false);
+            k.ended = true, k.sim_end = c.clock().now_s();
+            last_progress = Steady::now();  // a stalled clock during the cut is the cut's doing
+          }
+      }
       int status = 0;
       if (waitpid(launcher, &status, WNOHANG) == launcher) {
         end_reason = "the components stopped (see components.log)";
@@ -381,6 +480,38 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   watchdog.join();
   stop_launcher(launcher);
   const double wall = std::chrono::duration<double>(Steady::now() - wall_start).count();
+  if (lab) {
+    for (auto& k : cuts)
+      if (k.begun && !k.ended) lab->set_cut(k.cut.host, false), k.ended = true, k.sim_end = c.clock().now_s();
+    const auto netem = lab->stop_helpers();
+    // What the network did, beside metrics.json: the hosts, the link, every cut and netem's counts.
+    std::ofstream nj(dir / "network.json");
+    nj << "{\n  \"deployment\": " << yaml_str(o.hosts->origin) << ",\n  \"hosts\": {";
+    for (size_t i = 0; i < o.hosts->hosts.size(); ++i) {
+      const auto& h = o.hosts->hosts[i];
+      nj << (i ? ", " : "") << yaml_str(h.name) << ": {\"address\": " << yaml_str(h.address) << ", \"components\": [";
+      for (size_t j = 0; j < h.components.size(); ++j) nj << (j ? ", " : "") << yaml_str(h.components[j]);
+      nj << "]}";
+    }
+    nj << "},\n  \"link\": " << yaml_str(o.link.text()) << ",\n  \"link_seed\": " << o.link_seed
+       << ",\n  \"secure\": " << (o.secure.empty() ? "false" : "true") << ",\n  \"cuts\": [";
+    for (size_t i = 0; i < cuts.size(); ++i) {
+      const auto& k = cuts[i];
+      nj << (i ? ", " : "") << "{\"host\": " << yaml_str(k.cut.host) << ", \"at_s\": " << k.cut.at_s
+         << ", \"wall_s\": " << k.cut.duration_s << ", \"happened\": " << (k.begun ? "true" : "false")
+         << ", \"sim_begin_s\": " << k.sim_begin << ", \"sim_end_s\": " << k.sim_end << "}";
+    }
+    nj << "],\n  \"netem\": {";
+    size_t i = 0;
+    for (const auto& [h, line] : netem) nj << (i++ ? ", " : "") << yaml_str(h) << ": " << yaml_str(line);
+    nj << "}\n}\n";
+    for (const auto& k : cuts)
+      if (k.begun) out.notes.push_back("cut " + k.cut.host + " at sim " + num_text(k.sim_begin) + " s for " +
+                                       num_text(k.cut.duration_s, "%.1f") + " s wall (sim " + num_text(k.sim_begin) +
+                                       "-" + num_text(k.sim_end) + " s)");
+      else out.notes.push_back("cut " + k.cut.host + " at sim " + num_text(k.cut.at_s) + " s never happened (run ended first)");
+    for (const auto& [h, line] : netem) out.notes.push_back(h + ": " + line);
+  }
   if (rc != 0 || run.t.size() < 2) {
     out.error = end_reason.empty() ? "run aborted" : end_reason;
     return out;
@@ -403,7 +534,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   return out;
 }
 
-std::string num_text(double v, const char* f = "%.0f") {
+std::string num_text(double v, const char* f) {
   if (!std::isfinite(v)) return "-";
   char b[64];
   std::snprintf(b, sizeof b, f, v);
@@ -426,8 +557,45 @@ int main(int argc, char** argv) {
   app.add_flag("--hil", o.hil,
                "hardware in the loop: the simulator as the ship's devices (NMEA/AIS to gpsd, orders on the actuator "
                "wire), mpgc_ship_bridge in its place; at a real-time factor (default 20), outputs in out/<scenario>-hil/");
+  std::string hosts_file, link;
+  std::vector<std::string> cuts;
+  app.add_option("--hosts", hosts_file,
+                 "across a ship's network: run the components on the hosts of a deployment (deploy/hosts/*.yaml) as "
+                 "network namespaces made for the run (root)");
+  app.add_option("--link", link, "with --hosts: every host's link, e.g. \"loss 20% delay 50ms\" (jitter 5ms too)");
+  app.add_option("--link-seed", o.link_seed, "with --link: seed of the loss and jitter draws");
+  app.add_option("--cut", cuts, "with --hosts: cut HOST off the network at simulated T s for D wall s: HOST@T+D (repeatable)");
+  app.add_flag("--capture", o.capture, "with --hosts: tcpdump every host to out/<scenario>/network/<host>.pcap");
+  app.add_option("--secure", o.secure,
+                 "DDS Security: authenticated, access-controlled, encrypted bus with the certificates and documents of "
+                 "this folder (deploy/security/make-pki.sh DIR)");
   CLI11_PARSE(app, argc, argv);
   if (o.hil && o.realtime_factor <= 0) o.realtime_factor = kHilFactor;
+  try {
+    if (hosts_file.empty() && (!link.empty() || !cuts.empty() || o.capture))
+      throw std::invalid_argument("--link, --cut and --capture need --hosts");
+    if (!hosts_file.empty()) {
+      if (o.hil) throw std::invalid_argument("--hosts and --hil together are not supported yet");
+      o.hosts = dp::load(hosts_file);
+      for (const char* c : {"ship_simulator", "situational_awareness", "obstacle_manager", "opp", "guidance_control", "scenario_runner"})
+        if (!o.hosts->host_of(c)) throw std::invalid_argument(hosts_file + " places no host for " + c);
+      o.link = link.empty() ? o.hosts->link : dp::parse_link(link);
+      for (const auto& k : cuts) {
+        o.cuts.push_back(dp::parse_cut(k));
+        if (!o.hosts->host(o.cuts.back().host)) throw std::invalid_argument("--cut " + k + ": no host '" + o.cuts.back().host + "' in " + hosts_file);
+      }
+      if (!dp::NetnsLab::available()) throw std::invalid_argument("--hosts needs root and ip netns (network namespaces)");
+    }
+    if (!o.secure.empty()) {
+      o.secure = fs::absolute(o.secure).string();
+      if (!fs::exists(fs::path(o.secure) / "security.xml"))
+        throw std::invalid_argument("--secure " + o.secure + ": no security.xml (make it with deploy/security/make-pki.sh)");
+      if (base_cyclone_uri().empty()) throw std::invalid_argument("--secure needs CYCLONEDDS_URI (./mpgc sets it)");
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "mpgc_run: " << e.what() << "\n";
+    return 2;
+  }
 
   const char* src = std::getenv("MPGC_SOURCE_DIR");
   const fs::path scen_dir = fs::path(src != nullptr ? src : ".") / "scenarios";
@@ -491,6 +659,7 @@ int main(int argc, char** argv) {
                 num_text(m.safety_violation_s).c_str(), m.replans, m.relaxed_plans, num_text(m.planning.p95_ms, "%.1f").c_str(),
                 num_text(m.sim_s).c_str(), num_text(m.wall_s, "%.1f").c_str());
     for (const auto& f : m.failures) std::printf("    why: %s\n", f.c_str());
+    for (const auto& n : r.notes) std::printf("    network: %s\n", n.c_str());
   }
   std::printf("%zu passed, %d failed   (outputs in %s/<scenario>/: metrics.json, timeseries.csv, trajectory.svg, dtc.svg)\n",
               results.size() - failed, failed, o.out.c_str());

@@ -120,6 +120,10 @@ int main(int argc, char** argv) {
   app.add_option("file", file, "launch file (YAML)")->required();
   app.add_option("--domain", domain, "DDS domain for every component (overrides the file)");
   app.add_option("--stop-timeout", stop_timeout, "[s] grace period after SIGTERM before SIGKILL");
+  std::string secure;
+  app.add_option("--secure", secure,
+                 "DDS Security: every component joins with its identity (certificate CN = its name) from this folder "
+                 "(deploy/security/make-pki.sh DIR): its security.xml is added to CYCLONEDDS_URI");
   CLI11_PARSE(app, argc, argv);
 
   mpgc::launch::LaunchFile lf;
@@ -139,8 +143,26 @@ int main(int argc, char** argv) {
   signal(SIGPIPE, SIG_IGN);
 
   std::vector<Proc> procs;
+  if (!secure.empty()) {
+    secure = fs::absolute(secure).string();
+    if (!fs::exists(fs::path(secure) / "security.xml")) {
+      std::cerr << "mpgc_launch: --secure " << secure << ": no security.xml (make it with deploy/security/make-pki.sh)\n";
+      return 2;
+    }
+  }
   for (auto& c : lf.components) {
     if (lf.domain >= 0) c.env["MPGC_DOMAIN"] = std::to_string(lf.domain);
+    if (!secure.empty()) {
+      // The network configuration stays (the component's own, else ours); security is merged after it.
+      const char* inherited = std::getenv("CYCLONEDDS_URI");
+      std::string uri = c.env.count("CYCLONEDDS_URI") ? c.env["CYCLONEDDS_URI"] : inherited != nullptr ? inherited : "";
+      if (uri.empty()) {
+        std::cerr << "mpgc_launch: --secure needs CYCLONEDDS_URI (the network configuration) for " << c.name << "\n";
+        return 2;
+      }
+      c.env["CYCLONEDDS_URI"] = uri + ",file://" + secure + "/security.xml";
+      if (!c.env.count("MPGC_SECURITY_ID")) c.env["MPGC_SECURITY_ID"] = c.name;
+    }
     procs.push_back(Proc{c});
   }
   for (auto& p : procs) {
