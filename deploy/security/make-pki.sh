@@ -139,10 +139,12 @@ for r in "${revoke[@]}"; do
 done
 
 # ---- OUT_DIR ------------------------------------------------------------------------------------
+# The path goes into file: URIs, Cyclone's comma-separated CYCLONEDDS_URI and XML text.
+check_path() { [[ "$1" =~ ^/[A-Za-z0-9._/+-]*$ ]] || die "OUT_DIR '$1' has characters that do not fit a file: URI in CYCLONEDDS_URI (use [A-Za-z0-9._/+-])"; }
+[[ "$out" == /* ]] && check_path "$out" || check_path "$PWD/$out"
 mkdir -p "$out/permissions" || die "cannot create '$out/permissions'"
 out="$(cd "$out" && pwd -P)"
-# The path goes into file: URIs, Cyclone's comma-separated CYCLONEDDS_URI and XML text.
-[[ "$out" =~ ^/[A-Za-z0-9._/+-]*$ ]] || die "OUT_DIR '$out' has characters that do not fit a file: URI in CYCLONEDDS_URI (use [A-Za-z0-9._/+-])"
+check_path "$out"
 exec 9>"$out/.make-pki.lock"
 flock -w 60 9 || die "another make-pki.sh holds $out/.make-pki.lock"
 tmp="$(mktemp -d "$out/.tmp.XXXXXX")"
@@ -162,9 +164,9 @@ days_until() {  # whole days from now until $1 (an ISO date), at least 1
   ((d >= 1)) || die "the clock reads $(date -u +%F): $1 is past, nothing can be issued"
   echo "$d"
 }
+days="$(days_until "$NOT_AFTER")"  # validity of everything issued now: up to NOT_AFTER
 pubkey() { openssl pkey -in "$1" -pubout 2>/dev/null || true; }
 cert_pubkey() { openssl x509 -in "$1" -noout -pubkey 2>/dev/null || true; }
-subject_of() { openssl x509 -in "$1" -noout -subject -nameopt RFC2253 2>/dev/null | sed 's/^subject=//'; }
 
 # ---- the CA -------------------------------------------------------------------------------------
 if [[ -e "$out/ca.pem" || -e "$out/ca.key" ]]; then
@@ -181,7 +183,7 @@ if [[ -e "$out/ca.pem" || -e "$out/ca.key" ]]; then
 else
   ca_name="${ca_name:-$DEFAULT_CA_NAME}"
   ssl req -x509 -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -sha256 \
-    -keyout "$tmp/ca.key" -out "$tmp/ca.pem" -days "$(days_until "$NOT_AFTER")" \
+    -keyout "$tmp/ca.key" -out "$tmp/ca.pem" -days "$days" \
     -subj "/C=NO/O=mpgc/CN=$ca_name" \
     -addext "basicConstraints=critical,CA:TRUE" -addext "keyUsage=critical,digitalSignature,keyCertSign,cRLSign"
   chmod 600 "$tmp/ca.key"
@@ -211,7 +213,7 @@ mv "$tmp/ca.cnf" "$out/ca.cnf"
 [[ -f "$out/crlnumber" ]] || echo 1000 >"$out/crlnumber"
 
 make_crl() {  # valid as long as the permissions: an expired CRL would stop every participant
-  ssl ca -config "$out/ca.cnf" -gencrl -crldays "$(days_until "$NOT_AFTER")" -out "$tmp/crl.pem"
+  ssl ca -config "$out/ca.cnf" -gencrl -crldays "$days" -out "$tmp/crl.pem"
   mv "$tmp/crl.pem" "$out/crl.pem"
 }
 crl_changed=0
@@ -235,31 +237,49 @@ if ((crl_changed)) || [[ ! -f "$out/crl.pem" ]] || ! openssl crl -in "$out/crl.p
 fi
 
 # ---- identities ---------------------------------------------------------------------------------
-cert_ok() {  # $1 name: why the existing certificate cannot be kept, or nothing
-  local n="$1" pem="$out/$1.pem" key="$out/$1.key"
-  [[ -f "$pem" && -f "$key" ]] || { echo "missing"; return; }
-  openssl verify -CAfile "$out/ca.pem" -CRLfile "$out/crl.pem" -crl_check "$pem" >/dev/null 2>&1 \
-    || { echo "does not verify against ca.pem (or is revoked)"; return; }
-  [[ "$(subject_of "$pem")" == "CN=$n,O=mpgc,C=NO" ]] || { echo "subject '$(subject_of "$pem")'"; return; }
-  [[ "$(cert_pubkey "$pem")" == "$(pubkey "$key")" ]] || { echo "$n.key does not match $n.pem"; return; }
-  openssl x509 -in "$pem" -noout -checkend $((30 * 86400)) >/dev/null || { echo "expires within 30 days"; return; }
-}
-printf 'basicConstraints=critical,CA:FALSE\nkeyUsage=critical,digitalSignature\nsubjectKeyIdentifier=hash\nauthorityKeyIdentifier=keyid\n' >"$tmp/leaf.ext"
+# Existing certificates are checked in one openssl verify (chain and CRL), then per certificate
+# subject, key and remaining validity; anything wrong is reported and the identity reissued.
+declare -A keep=()
+existing=()
 for n in "${names[@]}"; do
-  why="$(cert_ok "$n")"
-  if [[ -z "$why" ]]; then continue; fi
-  [[ "$why" == missing ]] || note "reissuing $n: $why"
+  if [[ -f "$out/$n.pem" && -f "$out/$n.key" ]]; then existing+=("$out/$n.pem")
+  elif [[ -f "$out/$n.pem" || -f "$out/$n.key" ]]; then note "reissuing $n: $n.pem or $n.key missing"; fi
+done
+if ((${#existing[@]})); then
+  while IFS= read -r line; do
+    [[ "$line" == *": OK" ]] || continue
+    f="${line%: OK}"; keep[$(basename "$f" .pem)]=1
+  done < <(openssl verify -CAfile "$out/ca.pem" -CRLfile "$out/crl.pem" -crl_check "${existing[@]}" 2>/dev/null || true)
+fi
+for f in "${existing[@]}"; do
+  n="$(basename "$f" .pem)"
+  if [[ -z "${keep[$n]:-}" ]]; then note "reissuing $n: $n.pem does not verify against ca.pem (or is revoked)"; continue; fi
+  info="$(openssl x509 -in "$f" -noout -subject -nameopt RFC2253 -checkend $((30 * 86400)) -pubkey 2>/dev/null || true)"
+  subj="$(sed -n 's/^subject=//p' <<<"$info")"
+  if [[ "$subj" != "CN=$n,O=mpgc,C=NO" ]]; then note "reissuing $n: subject '$subj'"; unset "keep[$n]"
+  elif ! grep -q "will not expire" <<<"$info"; then note "reissuing $n: expires within 30 days"; unset "keep[$n]"
+  elif [[ "$(sed -n '/BEGIN PUBLIC KEY/,/END PUBLIC KEY/p' <<<"$info")" != "$(openssl pkey -in "$out/$n.key" -pubout 2>/dev/null)" ]]; then
+    note "reissuing $n: $n.key does not belong to $n.pem"; unset "keep[$n]"
+  fi
+done
+printf 'basicConstraints=critical,CA:FALSE\nkeyUsage=critical,digitalSignature\nsubjectKeyIdentifier=hash\nauthorityKeyIdentifier=keyid\n' >"$tmp/leaf.ext"
+issued=()
+for n in "${names[@]}"; do
+  [[ -z "${keep[$n]:-}" ]] || continue
   ssl req -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -sha256 \
     -keyout "$tmp/$n.key" -out "$tmp/$n.csr" -subj "/C=NO/O=mpgc/CN=$n"
   ssl x509 -req -in "$tmp/$n.csr" -CA "$out/ca.pem" -CAkey "$out/ca.key" -CAserial "$out/ca.srl" -CAcreateserial \
-    -sha256 -days "$(days_until "$NOT_AFTER")" -extfile "$tmp/leaf.ext" -out "$tmp/$n.pem"
+    -sha256 -days "$days" -extfile "$tmp/leaf.ext" -out "$tmp/$n.pem"
   chmod 600 "$tmp/$n.key"
   mv "$tmp/$n.key" "$out/$n.key"
   mv "$tmp/$n.pem" "$out/$n.pem"
-  note "identity $n issued"
-  why="$(cert_ok "$n")"
-  [[ -z "$why" ]] || die "the new certificate of $n is not usable: $why"
+  issued+=("$out/$n.pem")
 done
+if ((${#issued[@]})); then
+  openssl verify -CAfile "$out/ca.pem" -CRLfile "$out/crl.pem" -crl_check "${issued[@]}" >"$tmp/verify.log" 2>&1 \
+    || { sed 's/^/    /' "$tmp/verify.log" >&2; die "a newly issued certificate does not verify"; }
+  for f in "${issued[@]}"; do note "identity $(basename "$f" .pem) issued"; done
+fi
 
 # ---- signed documents ---------------------------------------------------------------------------
 # install_signed NEW_XML DEST_XML: replaces DEST_XML and signs it (DEST .p7s) unless both are
@@ -275,6 +295,8 @@ install_signed() {
     return
   fi
   ssl smime -sign -text -in "$new" -out "$tmp/signed.p7s" -signer "$out/ca.pem" -inkey "$out/ca.key"
+  openssl smime -verify -text -in "$tmp/signed.p7s" -CAfile "$out/ca.pem" -out /dev/null >/dev/null 2>&1 \
+    || die "the new signature of ${p7s#$out/} does not verify against ca.pem"
   mv "$new" "$xml"
   mv "$tmp/signed.p7s" "$p7s"
   note "signed ${p7s#$out/}"
@@ -381,9 +403,6 @@ fi
 if ! cmp -s "$tmp/security.xml" "$out/security.xml"; then mv "$tmp/security.xml" "$out/security.xml"; note "security.xml written"; fi
 
 # ---- final checks -------------------------------------------------------------------------------
-for f in "$out/governance.p7s" "$out"/permissions/*.p7s; do
-  openssl smime -verify -in "$f" -CAfile "$out/ca.pem" -out /dev/null >/dev/null 2>&1 || die "${f#$out/} does not verify against ca.pem"
-done
 declare -A want=()
 for n in "${names[@]}"; do want[$n]=1; done
 for f in "$out"/permissions/*.xml; do

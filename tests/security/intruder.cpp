@@ -15,7 +15,7 @@
 //   participant: 0 OK                        or  participant: -1 ERROR
 //   participant_ms: 6
 //   topic control/actuators: 0 OK            or  topic control/actuators: -13 NOT_ALLOWED_BY_SECURITY
-//   writer control/actuators: -13 NOT_ALLOWED_BY_SECURITY
+//   writer control/actuators: -13 NOT_ALLOWED_BY_SECURITY   or  ...: none (no topic)
 //   reader nav/own_state: 0 OK
 //   written control/actuators: 80
 //   matched control/actuators: 1             (most readers matched at once; first_match_ms: ...)
@@ -158,6 +158,7 @@ int main(int argc, char** argv) {
     report("participant", e.code());
   }
   std::printf("participant_ms: %.1f\n", ms_since_start());
+  std::fflush(stdout);
   if (!part) {
     // Nothing else can be tried; print the counts the tests look for.
     if (publish) std::printf("written control/actuators: 0\nmatched control/actuators: 0\n");
@@ -195,7 +196,7 @@ int main(int argc, char** argv) {
         return std::make_unique<dds::Writer<msg::ActuatorCommand>>(*part, *act_topic, dds::QosProfile::command(16));
       });
     else
-      report("writer " + act, DDS_RETCODE_PRECONDITION_NOT_MET);  // no topic, no writer
+      std::printf("writer %s: none (no topic)\n", act.c_str());  // a writer needs the topic
   }
 
   uint64_t written = 0, write_errors = 0;
