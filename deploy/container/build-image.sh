@@ -35,7 +35,7 @@ REBUILD_BASE=0
 QUIET=0
 APT_DIR="${MPGC_APT_SOURCES:-/etc/apt}"
 # Bump when the base recipe below changes in a way the hashed inputs do not show.
-BASE_RECIPE=3
+BASE_RECIPE=4
 
 usage() { sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'; }
 while [ $# -gt 0 ]; do
@@ -179,6 +179,10 @@ path-exclude /usr/share/locale/*
 path-include /usr/share/locale/locale.alias
 path-exclude /usr/share/lintian/*
 EOF
+  # ... and out of the base itself (what debootstrap installed before that rule): about 45 MB
+  find "$ROOTFS/usr/share/doc" -mindepth 1 ! -type d ! -name copyright -delete
+  find "$ROOTFS/usr/share/locale" -mindepth 1 -maxdepth 1 ! -name locale.alias -exec rm -rf {} +
+  rm -rf "$ROOTFS"/usr/share/man/* "$ROOTFS"/usr/share/info/* "$ROOTFS"/usr/share/lintian/*
   echo 'APT::Install-Recommends "false"; APT::Install-Suggests "false";' >"$ROOTFS/etc/apt/apt.conf.d/01-mpgc-norecommends"
   rm -rf "$ROOTFS"/var/lib/apt/lists/* "$ROOTFS"/var/cache/apt/archives/*.deb "$ROOTFS"/var/cache/apt/*.bin \
          "$ROOTFS"/var/log/apt/* "$ROOTFS"/var/log/dpkg.log "$ROOTFS"/var/log/bootstrap.log
