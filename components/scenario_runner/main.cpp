@@ -256,6 +256,11 @@ struct Outcome {
 
 std::string num_text(double v, const char* f = "%.0f");
 
+int plans_between(const sr::RunRecord& run, double t0, double t1) {
+  return static_cast<int>(std::count_if(run.plans.begin(), run.plans.end(),
+                                        [&](const sr::PlanRecord& p) { return p.t > t0 && p.t < t1; }));
+}
+
 // The Cyclone configuration this process was started with (./mpgc exports loopback.xml).
 std::string base_cyclone_uri() {
   static const std::string uri = [] {
@@ -499,7 +504,8 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
       const auto& k = cuts[i];
       nj << (i ? ", " : "") << "{\"host\": " << yaml_str(k.cut.host) << ", \"at_s\": " << k.cut.at_s
          << ", \"wall_s\": " << k.cut.duration_s << ", \"happened\": " << (k.begun ? "true" : "false")
-         << ", \"sim_begin_s\": " << k.sim_begin << ", \"sim_end_s\": " << k.sim_end << "}";
+         << ", \"sim_begin_s\": " << k.sim_begin << ", \"sim_end_s\": " << k.sim_end
+         << ", \"plans_during\": " << plans_between(run, k.sim_begin, k.sim_end) << "}";
     }
     nj << "],\n  \"netem\": {";
     size_t i = 0;
@@ -508,7 +514,9 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     for (const auto& k : cuts)
       if (k.begun) out.notes.push_back("cut " + k.cut.host + " at sim " + num_text(k.sim_begin) + " s for " +
                                        num_text(k.cut.duration_s, "%.1f") + " s wall (sim " + num_text(k.sim_begin) +
-                                       "-" + num_text(k.sim_end) + " s)");
+                                       "-" + num_text(k.sim_end) + " s): " +
+                                       std::to_string(plans_between(run, k.sim_begin, k.sim_end)) +
+                                       " plans arrived meanwhile");
       else out.notes.push_back("cut " + k.cut.host + " at sim " + num_text(k.cut.at_s) + " s never happened (run ended first)");
     for (const auto& [h, line] : netem) out.notes.push_back(h + ": " + line);
   }
