@@ -237,7 +237,7 @@ ENV PATH=/opt/mpgc/bin:/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/
 LABEL org.mpgc.role=runtime+binaries org.mpgc.binaries-from=$BIN_DIR
 EOF
   old="$(podman image inspect --format '{{.Id}}' "$BIN_TAG" 2>/dev/null || true)"
-  if ! podman build --network none --pull=never -t "$BIN_TAG" "$ctx" >"$ctx/log" 2>&1; then
+  if ! podman build --network none --pull=never --layers=false -t "$BIN_TAG" "$ctx" >"$ctx/log" 2>&1; then
     tail -n 20 "$ctx/log" >&2; rm -rf "$ctx"; die "podman build of $BIN_TAG failed"
   fi
   rm -rf "$ctx"
