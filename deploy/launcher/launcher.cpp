@@ -8,6 +8,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <sys/prctl.h>
+
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -141,6 +144,7 @@ int main(int argc, char** argv) {
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
   signal(SIGPIPE, SIG_IGN);
+  prctl(PR_SET_CHILD_SUBREAPER, 1);  // a component's orphaned children come to us, not to init
 
   std::vector<Proc> procs;
   if (!secure.empty()) {
@@ -210,10 +214,15 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < fds.size(); ++i)
       if (fds[i].revents != 0) drain(*owners[i]);
 
-    for (auto& p : procs) {
-      if (p.pid <= 0) continue;
+    // Every child that ended: ours, or an orphan re-parented to us (as a container's first process
+    // or a subreaper the launcher inherits what its components left behind, and must reap it).
+    for (;;) {
       int status = 0;
-      if (waitpid(p.pid, &status, WNOHANG) != p.pid) continue;
+      const pid_t w = waitpid(-1, &status, WNOHANG);
+      if (w <= 0) break;
+      auto it = std::find_if(procs.begin(), procs.end(), [w](const Proc& q) { return q.pid == w; });
+      if (it == procs.end()) continue;
+      Proc& p = *it;
       if (p.out_fd >= 0) {
         drain(p);
         if (p.out_fd >= 0) close(p.out_fd);

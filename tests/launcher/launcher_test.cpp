@@ -11,6 +11,9 @@
 
 #include <chrono>
 #include <fstream>
+#include <thread>
+#include <sstream>
+#include <filesystem>
 #include <regex>
 #include <string>
 
@@ -90,6 +93,7 @@ class Launch {
     return -1;
   }
   void signal(int sig) { kill(pid_, sig); }
+  pid_t pid() const { return pid_; }
   const std::string& output() const { return out_; }
 
  private:
@@ -157,6 +161,44 @@ components:
   EXPECT_EQ(l.wait_exit(30.0), 0) << l.output();
   EXPECT_NE(l.output().find("[launch] optional exited with code 1"), std::string::npos) << l.output();
   EXPECT_NE(l.output().find("[launch] finisher exited with code 0"), std::string::npos) << l.output();
+}
+
+// A component's orphaned children are re-parented to the launcher (a subreaper, and PID 1 in a
+// container) and reaped by it: no zombie is left while the run goes on.
+TEST(Launcher, AdoptsAndReapsOrphansOfItsComponents) {
+  Launch l(R"(
+components:
+  - name: forker
+    executable: /bin/sh
+    args: [-c, "(sleep 1 &); (sleep 1 &); sleep 3"]
+)");
+  ASSERT_TRUE(l.wait_output("started forker", 10.0)) << l.output();
+  // The launcher's children and how many of them are zombies.
+  auto children = [&] {
+    int all = 0, zombies = 0;
+    for (const auto& e : std::filesystem::directory_iterator("/proc")) {
+      std::ifstream in(e.path() / "stat");
+      std::string stat;
+      if (!std::getline(in, stat)) continue;
+      const auto close_paren = stat.rfind(')');
+      if (close_paren == std::string::npos) continue;
+      std::istringstream rest(stat.substr(close_paren + 2));
+      char state = 0;
+      int ppid = 0;
+      rest >> state >> ppid;
+      if (ppid != l.pid()) continue;
+      ++all;
+      zombies += state == 'Z' ? 1 : 0;
+    }
+    return std::make_pair(all, zombies);
+  };
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(children().first, 3) << "the shell and its two orphaned sleeps, adopted by the launcher";
+  std::this_thread::sleep_for(std::chrono::milliseconds(1200));  // the orphans have ended
+  const auto [all, zombies] = children();
+  EXPECT_EQ(zombies, 0) << "orphans left as zombies under the launcher";
+  EXPECT_EQ(all, 1) << "only the shell is left";
+  EXPECT_EQ(l.wait_exit(10.0), 0) << l.output();
 }
 
 TEST(Launcher, BadLaunchFileIsRejectedWithItsError) {
