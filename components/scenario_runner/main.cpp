@@ -59,7 +59,7 @@ struct Options {
   bool hil = false;              // hardware in the loop: simulator -> NMEA -> gpsd -> ship_bridge
   // Across a ship's network: the components on the hosts of a deployment, as network namespaces.
   std::optional<dp::Deployment> hosts;
-  dp::LinkSpec link;             // on every host's egress
+  std::map<std::string, dp::LinkSpec> links;  // each host's egress
   uint64_t link_seed = 1;
   std::vector<dp::LinkCut> cuts;
   bool capture = false;          // tcpdump of every host to <run>/network/<host>.pcap
@@ -354,7 +354,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
       std::ofstream(net_dir / h.name / "cyclonedds.xml") << dp::cyclone_config(*o.hosts, h);
     }
     dp::LabOptions lo;
-    lo.link = o.link;
+    lo.links = o.links;
     lo.seed = o.link_seed;
     lo.netem_exe = (fs::canonical("/proc/self/exe").parent_path() / "mpgc_netem").string();
     lo.capture_dir = o.capture ? net_dir.string() : "";
@@ -553,7 +553,10 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
       for (size_t j = 0; j < h.components.size(); ++j) nj << (j ? ", " : "") << yaml_str(h.components[j]);
       nj << "]}";
     }
-    nj << "},\n  \"link\": " << yaml_str(o.link.text()) << ",\n  \"link_seed\": " << o.link_seed
+    nj << "},\n  \"links\": {";
+    size_t li = 0;
+    for (const auto& [h, l] : o.links) nj << (li++ ? ", " : "") << yaml_str(h) << ": " << yaml_str(l.text());
+    nj << "},\n  \"link_seed\": " << o.link_seed
        << ",\n  \"secure\": " << (o.secure.empty() ? "false" : "true") << ",\n  \"cuts\": [";
     for (size_t i = 0; i < cuts.size(); ++i) {
       const auto& k = cuts[i];
@@ -621,12 +624,15 @@ int main(int argc, char** argv) {
   app.add_flag("--hil", o.hil,
                "hardware in the loop: the simulator as the ship's devices (NMEA/AIS to gpsd, orders on the actuator "
                "wire), mpgc_ship_bridge in its place; at a real-time factor (default 20), outputs in out/<scenario>-hil/");
-  std::string hosts_file, link;
+  std::string hosts_file;
+  std::vector<std::string> link;
   std::vector<std::string> cuts;
   app.add_option("--hosts", hosts_file,
                  "across a ship's network: run the components on the hosts of a deployment (deploy/hosts/*.yaml) as "
                  "network namespaces made for the run (root)");
-  app.add_option("--link", link, "with --hosts: every host's link, e.g. \"loss 20% delay 50ms\" (jitter 5ms too)");
+  app.add_option("--link", link,
+                 "with --hosts: every host's link, e.g. \"loss 20% delay 50ms\" (jitter 5ms too), or one host's: "
+                 "\"autonomy: loss 5%\" (repeatable, later ones win; default: the deployment's)");
   app.add_option("--link-seed", o.link_seed, "with --link: seed of the loss and jitter draws");
   app.add_option("--cut", cuts, "with --hosts: cut HOST off the network at simulated T s for D wall s: HOST@T+D (repeatable)");
   app.add_flag("--containers", o.containers,
@@ -648,7 +654,7 @@ int main(int argc, char** argv) {
       o.hosts = dp::load(hosts_file);
       for (const char* c : {"ship_simulator", "situational_awareness", "obstacle_manager", "opp", "guidance_control", "scenario_runner"})
         if (!o.hosts->host_of(c)) throw std::invalid_argument(hosts_file + " places no host for " + c);
-      o.link = link.empty() ? o.hosts->link : dp::parse_link(link);
+      o.links = dp::host_links(*o.hosts, link);
       for (const auto& k : cuts) {
         o.cuts.push_back(dp::parse_cut(k));
         if (!o.hosts->host(o.cuts.back().host)) throw std::invalid_argument("--cut " + k + ": no host '" + o.cuts.back().host + "' in " + hosts_file);

@@ -100,6 +100,23 @@ LinkCut parse_cut(const std::string& spec) {
   return c;
 }
 
+std::map<std::string, LinkSpec> host_links(const Deployment& d, const std::vector<std::string>& overrides) {
+  std::map<std::string, LinkSpec> links;
+  for (const auto& h : d.hosts) links[h.name] = h.link;
+  static const std::regex one_host(R"(^\s*([a-z0-9][a-z0-9-]*)\s*:(.*)$)");
+  for (const auto& o : overrides) {
+    std::smatch m;
+    if (std::regex_match(o, m, one_host)) {
+      if (!d.host(m[1].str())) throw std::invalid_argument("link '" + o + "': no host '" + m[1].str() + "' in " + d.origin);
+      links[m[1].str()] = parse_link(m[2].str());
+    } else {
+      const LinkSpec l = parse_link(o);
+      for (auto& [name, link] : links) link = l;
+    }
+  }
+  return links;
+}
+
 const std::vector<std::string>& known_components() {
   static const std::vector<std::string> k{"ship_simulator",  "ship_bridge", "situational_awareness", "obstacle_manager",
                                           "opp",             "guidance_control", "scenario_runner"};
@@ -171,7 +188,7 @@ Deployment parse(const std::string& yaml, const std::string& origin) {
   static const std::regex name_re("^[a-z0-9][a-z0-9-]{0,15}$"), if_re("^[a-zA-Z0-9_.-]{1,15}$");
   std::set<std::string> names, addresses, placed;
   for (const auto& hn : hosts) {
-    only_keys(origin, hn, {"name", "address", "interface", "components"}, "a host");
+    only_keys(origin, hn, {"name", "address", "interface", "components", "link"}, "a host");
     Host h;
     if (!hn["name"]) fail(origin, hn, "host without 'name'");
     h.name = get<std::string>(origin, hn["name"], "name");
@@ -189,6 +206,14 @@ Deployment parse(const std::string& yaml, const std::string& origin) {
     if (!addresses.insert(h.address).second) fail(origin, hn["address"], "address " + h.address + " used twice");
     h.interface = hn["interface"] ? get<std::string>(origin, hn["interface"], "interface") : "eth0";
     if (!std::regex_match(h.interface, if_re)) fail(origin, hn["interface"], "interface '" + h.interface + "' is not an interface name");
+    h.link = d.link;
+    if (hn["link"]) {
+      try {
+        h.link = parse_link(get<std::string>(origin, hn["link"], "link"));
+      } catch (const std::invalid_argument& e) {
+        fail(origin, hn["link"], e.what());
+      }
+    }
     if (!hn["components"]) fail(origin, hn, "host '" + h.name + "' has no 'components'");
     h.components = get<std::vector<std::string>>(origin, hn["components"], "components");
     for (const auto& c : h.components) {

@@ -4,6 +4,7 @@
 // No DDS, no clock: text in, text out.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,7 @@ struct Host {
   std::string address;    // IPv4, inside the network's subnet
   std::string interface;  // the host's interface on the ship's network (eth0 in the namespaces too)
   std::vector<std::string> components;
+  LinkSpec link;          // its egress (the network's link unless the host gives its own)
 };
 
 struct Deployment {
@@ -44,12 +46,16 @@ struct Deployment {
   int prefix = 24;
   double spdp_interval_s = 1.0;    // [s] discovery resend: 1 s holds up under loss (deployment note)
   double lease_duration_s = 10.0;  // [s] a participant silent this long is dropped
-  LinkSpec link;                   // per-host link properties (the file's default; --link overrides)
+  LinkSpec link;                   // every host's link unless it gives its own
   std::vector<Host> hosts;
 
   const Host* host(const std::string& name) const;
   const Host* host_of(const std::string& component) const;  // nullptr: not deployed
 };
+
+// Each host's link after command-line overrides: "SPEC" for every host, "HOST: SPEC" for one
+// (later ones win). Throws naming an unknown host or a bad spec.
+std::map<std::string, LinkSpec> host_links(const Deployment& d, const std::vector<std::string>& overrides);
 
 // The components a deployment may place (scenario_runner: the evaluator of mpgc_run).
 const std::vector<std::string>& known_components();

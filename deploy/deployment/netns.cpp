@@ -104,7 +104,8 @@ bool NetnsLab::available() { return geteuid() == 0 && run_command({"ip", "netns"
 
 NetnsLab::NetnsLab(const Deployment& d, const LabOptions& o) : d_(d), prefix_("mpgc" + std::to_string(getpid()) + "-") {
   if (geteuid() != 0) throw std::runtime_error("network lab: network namespaces need root");
-  if (o.link.impaired() && o.netem_exe.empty()) throw std::runtime_error("network lab: an impaired link needs mpgc_netem");
+  for (const auto& [host, link] : o.links)
+    if (link.impaired() && o.netem_exe.empty()) throw std::runtime_error("network lab: an impaired link needs mpgc_netem");
   remove_stale_labs();
   try {
     const std::string br = prefix_ + "br";
@@ -137,13 +138,15 @@ NetnsLab::NetnsLab(const Deployment& d, const LabOptions& o) : d_(d), prefix_("m
                      {"ip", "netns", "exec", n, "tcpdump", "-i", "any", "-n", "-U", "-w", o.capture_dir + "/" + h.name + ".pcap"},
                      o.capture_dir + "/tcpdump-" + h.name + ".log");
       }
-      if (o.link.impaired()) {
+      const auto li = o.links.find(h.name);
+      const LinkSpec link = li != o.links.end() ? li->second : LinkSpec{};
+      if (link.impaired()) {
         must({"ip", "netns", "exec", n, "iptables", "-A", "OUTPUT", "-o", h.interface, "-j", "NFQUEUE", "--queue-num", "0",
               "--queue-bypass"});
         std::vector<std::string> a = {"ip", "netns", "exec", n, o.netem_exe, "--queue", "0",
-                                      "--delay-ms", std::to_string(o.link.delay_ms), "--loss", std::to_string(o.link.loss_pct),
+                                      "--delay-ms", std::to_string(link.delay_ms), "--loss", std::to_string(link.loss_pct),
                                       "--seed", std::to_string(o.seed + i)};
-        if (o.link.jitter_ms > 0) a.insert(a.end(), {"--jitter-ms", std::to_string(o.link.jitter_ms)});
+        if (link.jitter_ms > 0) a.insert(a.end(), {"--jitter-ms", std::to_string(link.jitter_ms)});
         start_helper(h.name, "netem", a, o.log_dir.empty() ? "" : o.log_dir + "/netem-" + h.name + ".log");
       }
     }

@@ -18,9 +18,9 @@
 namespace mpgc::deploy {
 
 struct LabOptions {
-  LinkSpec link;                // applied to every host's egress
+  std::map<std::string, LinkSpec> links;  // per host, on its egress (host_links); absent = clean
   uint64_t seed = 1;            // netem's loss and jitter draws (host i uses seed + i)
-  std::string netem_exe;        // mpgc_netem; required when link is impaired
+  std::string netem_exe;        // mpgc_netem; required when a link is impaired
   std::string capture_dir;      // non-empty: tcpdump of every host's namespace to <dir>/<host>.pcap
   std::string log_dir;          // netem's output goes to <dir>/netem-<host>.log
 };

@@ -88,6 +88,24 @@ TEST(Deployment, LinkAndCutSpecs) {
     EXPECT_THROW(dp::parse_cut(bad), std::invalid_argument) << bad;
 }
 
+TEST(Deployment, PerHostLinksFromTheFileAndTheCommandLine) {
+  const dp::Deployment d = dp::parse(with_hosts("  - {name: a, address: 10.9.8.1, components: [opp], link: 'delay 5ms'}\n"
+                                                "  - {name: b, address: 10.9.8.2, components: []}\n"),
+                                     "x.yaml");
+  auto l = dp::host_links(d, {});
+  EXPECT_DOUBLE_EQ(l["a"].delay_ms, 5.0);
+  EXPECT_FALSE(l["b"].impaired());
+  l = dp::host_links(d, {"loss 20% delay 50ms", "b: loss 1%"});
+  EXPECT_DOUBLE_EQ(l["a"].loss_pct, 20.0);
+  EXPECT_DOUBLE_EQ(l["a"].delay_ms, 50.0);
+  EXPECT_DOUBLE_EQ(l["b"].loss_pct, 1.0);
+  EXPECT_DOUBLE_EQ(l["b"].delay_ms, 0.0);
+  EXPECT_THROW(dp::host_links(d, {"c: loss 1%"}), std::invalid_argument);
+  EXPECT_THROW(dp::host_links(d, {"a: loss"}), std::invalid_argument);
+  EXPECT_NE(error_of(with_hosts("  - {name: a, address: 10.9.8.1, components: [], link: 'loss 200%'}\n")).find("below 100%"),
+            std::string::npos);
+}
+
 TEST(Deployment, CycloneConfigNamesTheInterfaceAndEveryPeer) {
   const dp::Deployment d = dp::parse(kGood, "x.yaml");
   const std::string x = dp::cyclone_config(d, d.hosts[1]);

@@ -126,7 +126,9 @@ TEST(ThreeHosts, LossyDelayedLinkAndACutStillPassTheScenario) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("network: cut autonomy at sim"), std::string::npos) << r.out;
   const std::string nj = slurp(fs::path(dir) / "dnv_02_CR-GW" / "network.json");
-  EXPECT_NE(nj.find("\"link\": \"loss 20% delay 50ms\""), std::string::npos) << nj;
+  EXPECT_NE(nj.find("\"links\": {\"autonomy\": \"loss 20% delay 50ms\", \"bridge-pc\": \"loss 20% delay 50ms\", \"ship\": \"loss 20% delay 50ms\"}"),
+            std::string::npos)
+      << nj;
   EXPECT_NE(nj.find("\"happened\": true"), std::string::npos) << nj;
   // netem's summary per host: "netem: queue 0 passed P dropped L (x.x%) ..." — loss near 20 %.
   static const std::regex summary(R"(passed (\d+) dropped (\d+))");
