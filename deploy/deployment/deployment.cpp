@@ -11,31 +11,14 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <yaml-cpp/yaml.h>
+#include "mpgc/yaml/fields.hpp"
 
 namespace mpgc::deploy {
 namespace {
 
-[[noreturn]] void fail(const std::string& origin, const YAML::Node& n, const std::string& msg) {
-  throw std::runtime_error(origin + ":" + std::to_string(n.Mark().line + 1) + ": " + msg);
-}
-
-template <class T>
-T get(const std::string& origin, const YAML::Node& n, const std::string& field) {
-  try {
-    return n.as<T>();
-  } catch (const YAML::Exception&) {
-    fail(origin, n, "field '" + field + "' has the wrong type");
-  }
-}
-
-void only_keys(const std::string& origin, const YAML::Node& n, const std::set<std::string>& keys, const std::string& what) {
-  if (!n.IsMap()) fail(origin, n, what + " must be a mapping");
-  for (const auto& kv : n) {
-    const auto k = kv.first.as<std::string>();
-    if (!keys.count(k)) fail(origin, kv.first, "unknown field '" + k + "' in " + what);
-  }
-}
+using mpgc::yaml::fail;
+using mpgc::yaml::get;
+using mpgc::yaml::only_keys;
 
 uint32_t ipv4(const std::string& s) {
   in_addr a{};
@@ -136,12 +119,7 @@ const Host* Deployment::host_of(const std::string& component) const {
 }
 
 Deployment parse(const std::string& yaml, const std::string& origin) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(origin + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = mpgc::yaml::load(yaml, origin);
   if (!root.IsMap()) throw std::runtime_error(origin + ": a deployment is a mapping with 'network' and 'hosts'");
   only_keys(origin, root, {"name", "network", "hosts"}, "the deployment");
   Deployment d;

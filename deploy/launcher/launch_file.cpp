@@ -8,25 +8,15 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <yaml-cpp/yaml.h>
+#include "mpgc/yaml/fields.hpp"
 
 namespace fs = std::filesystem;
 
 namespace mpgc::launch {
 namespace {
 
-[[noreturn]] void fail(const std::string& origin, const YAML::Node& n, const std::string& msg) {
-  throw std::runtime_error(origin + ":" + std::to_string(n.Mark().line + 1) + ": " + msg);
-}
-
-template <class T>
-T get(const std::string& origin, const YAML::Node& n, const std::string& field) {
-  try {
-    return n.as<T>();
-  } catch (const YAML::Exception&) {
-    fail(origin, n, "field '" + field + "' has the wrong type");
-  }
-}
+using mpgc::yaml::fail;
+using mpgc::yaml::get;
 
 std::string resolve_executable(const std::string& exe, const std::string& bin_dir) {
   if (exe.find('/') != std::string::npos) return exe;
@@ -55,12 +45,7 @@ std::string ComponentSpec::command_line() const {
 
 LaunchFile parse(const std::string& yaml, const std::string& origin, const std::string& base_dir,
                  const std::string& bin_dir) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(origin + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = mpgc::yaml::load(yaml, origin);
   if (!root.IsMap()) throw std::runtime_error(origin + ": a launch file is a mapping with 'components'");
   LaunchFile lf;
   static const std::set<std::string> top_keys{"domain", "components"};

@@ -24,23 +24,12 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string capture(const std::string& cmd, int* code = nullptr) {
-  std::string out;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (p == nullptr) return out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int st = pclose(p);
-  if (code) *code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return out;
+  const auto r = mpgc::testing::shell(cmd);
+  if (code) *code = r.code;
+  return r.output;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string slurp(const fs::path& p) { return mpgc::testing::read_file(p.string()); }
 
 }  // namespace
 

@@ -26,30 +26,11 @@ std::string scenario() {
 }
 std::string deployment() { return mpgc::testing::source_dir() + "/deploy/hosts/three-hosts.yaml"; }
 
-struct Result {
-  int code = -1;
-  std::string out;
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = mpgc::testing::bin_dir() + "/mpgc_run " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int st = pclose(p);
-  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+mpgc::testing::CommandResult run(const std::string& args) {
+  return mpgc::testing::shell(mpgc::testing::bin_dir() + "/mpgc_run " + args);
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string slurp(const fs::path& p) { return mpgc::testing::read_file(p.string()); }
 
 std::string out_dir(const std::string& tag) {
   const fs::path d = fs::path(::testing::TempDir()) / ("mpgc_three_hosts_" + tag + "_" + std::to_string(getpid()));
@@ -79,10 +60,10 @@ void expect_no_lab_left() {
 TEST(ThreeHosts, LockstepLoopIsTheSingleHostLoopBitForBitAndNoPacketLeavesTheLinks) {
   if (geteuid() != 0) GTEST_SKIP() << "network namespaces need root (CI runs as root)";
   const std::string single = out_dir("single"), multi = out_dir("multi");
-  const Result a = run(scenario() + " --quiet --out " + single);
-  ASSERT_EQ(a.code, 0) << a.out;
-  const Result b = run(scenario() + " --quiet --hosts " + deployment() + " --capture --out " + multi);
-  ASSERT_EQ(b.code, 0) << b.out;
+  const auto a = run(scenario() + " --quiet --out " + single);
+  ASSERT_EQ(a.code, 0) << a.output;
+  const auto b = run(scenario() + " --quiet --hosts " + deployment() + " --capture --out " + multi);
+  ASSERT_EQ(b.code, 0) << b.output;
   const std::string ts1 = slurp(fs::path(single) / "dnv_02_CR-GW" / "timeseries.csv");
   const std::string ts3 = slurp(fs::path(multi) / "dnv_02_CR-GW" / "timeseries.csv");
   ASSERT_GT(ts1.size(), 1000u);
@@ -121,10 +102,10 @@ TEST(ThreeHosts, LockstepLoopIsTheSingleHostLoopBitForBitAndNoPacketLeavesTheLin
 TEST(ThreeHosts, LossyDelayedLinkAndACutStillPassTheScenario) {
   if (geteuid() != 0) GTEST_SKIP() << "network namespaces need root (CI runs as root)";
   const std::string dir = out_dir("lossy");
-  const Result r = run(scenario() + " --quiet --hosts " + deployment() +
+  const auto r = run(scenario() + " --quiet --hosts " + deployment() +
                        " --link 'loss 20% delay 50ms' --link-seed 7 --cut autonomy@500+5 --realtime-factor 20 --out " + dir);
-  EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("network: cut autonomy at sim"), std::string::npos) << r.out;
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("network: cut autonomy at sim"), std::string::npos) << r.output;
   const std::string nj = slurp(fs::path(dir) / "dnv_02_CR-GW" / "network.json");
   EXPECT_NE(nj.find("\"links\": {\"autonomy\": \"loss 20% delay 50ms\", \"bridge-pc\": \"loss 20% delay 50ms\", \"ship\": \"loss 20% delay 50ms\"}"),
             std::string::npos)

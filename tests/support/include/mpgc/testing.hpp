@@ -17,6 +17,16 @@ std::string shared_data(const std::string& rel);
 std::string bin_dir();
 std::string source_dir();
 
+// A shell command's exit code (-1: killed or not run) and its stdout and stderr together.
+struct CommandResult {
+  int code = -1;
+  std::string output;
+};
+CommandResult shell(const std::string& command);
+
+// A whole file ("" when it cannot be read).
+std::string read_file(const std::string& path);
+
 // A child process (a component under test): SIGTERM on destruction, SIGKILL after 5 s.
 class Process {
  public:
