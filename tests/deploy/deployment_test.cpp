@@ -1,6 +1,8 @@
 // The deployment description (deploy/hosts/*.yaml) and what is generated from it, without a network.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -148,6 +150,26 @@ TEST(Deployment, ShippedSystemdUnitsAreTheGeneratedOnes) {
     ++units;
   }
   EXPECT_EQ(units, 6);
+}
+
+// systemd itself accepts the units (sections, keys, the executables they start).
+TEST(Deployment, GeneratedUnitsPassSystemdAnalyzeVerify) {
+  if (mpgc::testing::shell("command -v systemd-analyze").code != 0) GTEST_SKIP() << "no systemd-analyze on this machine";
+  const fs::path dir = fs::path(::testing::TempDir()) / ("mpgc_units_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  dp::LaunchOptions o;
+  o.bin_dir = mpgc::testing::bin_dir();
+  std::string files;
+  for (const auto& c : dp::known_components()) {
+    if (c == "scenario_runner" || !fs::exists(o.bin_dir + "/mpgc_" + c)) continue;
+    std::ofstream(dir / ("mpgc-" + c + ".service")) << dp::systemd_unit(c, o);
+    files += " " + (dir / ("mpgc-" + c + ".service")).string();
+  }
+  std::ofstream(dir / "mpgc.target") << dp::systemd_target();
+  const auto r = mpgc::testing::shell("systemd-analyze verify" + files + " " + (dir / "mpgc.target").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output, "") << "systemd-analyze has remarks";
+  fs::remove_all(dir);
 }
 
 TEST(Deployment, ShippedThreeHostsFileIsValidAndPlacesTheClosedLoop) {
