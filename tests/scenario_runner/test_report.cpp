@@ -13,6 +13,7 @@
 
 #include "mpgc/scenario_runner/report.hpp"
 #include "synthetic.hpp"
+#include "mpgc/testing.hpp"
 
 namespace sr = mpgc::scenario_runner;
 using mpgc::geo::deg2rad;
@@ -51,12 +52,7 @@ sr::RunRecord paper_like() {
   return r;
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const std::string& path) { return mpgc::testing::read_file(path); }
 
 int count(const std::string& s, const std::string& what) {
   int c = 0;
