@@ -18,7 +18,9 @@ inline constexpr const char* kMovingObstacles = "obstacles/moving"; // MovingObs
 inline constexpr const char* kGoal = "mission/goal";            // MissionGoal       latched
 inline constexpr const char* kPath = "plan/path";               // Path              latched
 inline constexpr const char* kPlanEncounters = "plan/encounters";   // EncounterList   latched
+inline constexpr const char* kPlanMemory = "plan/memory";       // PlannerMemory     latched (opp reads it back on restart)
 inline constexpr const char* kActuators = "control/actuators";  // ActuatorCommand   command
 inline constexpr const char* kGuidanceStatus = "guidance/status";   // GuidanceStatus  state
+inline constexpr const char* kFaults = "sim/faults";            // FaultCommand      command (simulated runs only)
 
 }  // namespace mpgc::topics
