@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -34,6 +35,7 @@ struct Params {
   om::ChartParams chart;
   om::RegionParams region;
   om::DomainParams domain;
+  om::AgingParams aging;
 };
 
 void declare(mpgc::rt::ParamSet& ps, Params& p) {
@@ -55,6 +57,15 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("moving.lengths", &p.domain.lengths, 2.0, "-", 0.0, 100.0, "ship-domain radius in target lengths");
   ps.add("moving.max_speed", &p.domain.max_speed, 40.0, "m/s", 1.0, 200.0, "faster tracks are rejected");
   ps.add("moving.tentative", &p.domain.tentative, false, "also pass on tentative tracks");
+  ps.add("tracks.max_age", &p.aging.max_age, 60.0, "s", 0.1, 3600.0,
+         "drop a track whose last measurement is older (situational_awareness deletes at tracker.delete_after, "
+         "also 60 s by default)");
+  ps.add("tracks.timeout", &p.aging.timeout, 5.0, "s", 0.1, 3600.0,
+         "no sa/tracks for this long: health degraded, the last obstacles are predicted on until tracks.max_age");
+  ps.add("tracks.speed_std", &p.aging.speed_std, 1.0, "m/s", 0.0, 50.0,
+         "velocity uncertainty of an unobserved target: position_std^2 grows by (speed_std * time since the list)^2");
+  ps.add("tracks.radius_sigmas", &p.aging.radius_sigmas, 2.0, "-", 0.0, 10.0,
+         "the domain radius grows by this many times the growth of position_std");
   ps.add("nav.origin_tolerance", &p.origin_tolerance, 100.0, "m", 0.0, 1e6,
          "warn when NavState x,y and lat/lon disagree by more than this through chart.origin");
 }
@@ -115,6 +126,7 @@ int main(int argc, char** argv) {
     mpgc::rt::Component* c = &comp;
     p.region.validate();
     p.domain.validate();
+    p.aging.validate();
     const mpgc::geo::LocalNed frame({deg2rad(p.origin_lat), deg2rad(p.origin_lon)});
     const auto files = split_files(p.files);
 
@@ -124,11 +136,23 @@ int main(int argc, char** argv) {
       std::string stamp;
       om::RegionPolicy region;
       std::optional<om::PointNE> own;
-      std::optional<msg::TrackList> tracks;
+      om::MovingObstacleFeed feed;
       uint32_t version = 0;
       bool origin_warned = false;
+      // Health is the sum of independent problems ("chart", "tracks"); OK when there are none.
+      std::map<std::string, std::string> problems;
+      om::MovingObstacleFeed::Feed last_feed = om::MovingObstacleFeed::Feed::kWaiting;
+      bool emptied = false;  // silent and every track aged out
     };
-    auto st = std::make_shared<State>(State{{}, {}, chart_stamp(files), om::RegionPolicy(p.region), {}, {}, 0, false});
+    auto st = std::make_shared<State>(State{{}, {}, chart_stamp(files), om::RegionPolicy(p.region), {},
+                                            om::MovingObstacleFeed(p.domain, p.aging), 0, false, {}, {}, false});
+    auto set_problem = [c, st](const std::string& what, const std::string& detail) {
+      if (detail.empty()) st->problems.erase(what);
+      else st->problems[what] = detail;
+      std::string all;
+      for (const auto& [k, v] : st->problems) all += (all.empty() ? "" : "; ") + v;
+      c->set_health(all.empty() ? msg::HealthState::HEALTH_OK : msg::HealthState::HEALTH_DEGRADED, all);
+    };
     auto set_chart = [st](om::ObstacleSet s) {
       st->chart = std::move(s);
       st->bounds = om::FixedObstacleMap({}, st->chart.polygons).bounds();
@@ -189,72 +213,104 @@ int main(int argc, char** argv) {
           return "";
         });
 
-    c->subscribe<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(),
-                                [st](const msg::TrackList& t) { st->tracks = t; });
+    c->subscribe<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(), [c, st](const msg::TrackList& l) {
+      std::vector<om::TargetState> targets;
+      targets.reserve(l.tracks.size());
+      for (const auto& t : l.tracks) {
+        om::TargetState ts;
+        ts.id = t.id;
+        ts.mmsi = t.mmsi;
+        ts.x = t.x;
+        ts.y = t.y;
+        ts.vx = t.vx;
+        ts.vy = t.vy;
+        ts.var_x = t.cov[0];
+        ts.var_y = t.cov[5];
+        ts.length = t.length;
+        ts.since_update = t.since_update;
+        ts.tentative = t.status == msg::TrackStatus::TRACK_TENTATIVE;
+        ts.deleted = t.status == msg::TrackStatus::TRACK_DELETED;
+        targets.push_back(ts);
+      }
+      const auto r = st->feed.receive(l.header.stamp_ns, targets, c->now_ns());
+      if (r.deleted > 0) c->count("tracks_skipped_deleted", r.deleted);
+      if (r.tentative > 0) c->count("tracks_skipped_tentative", r.tentative);
+      for (const auto& why : r.rejected) c->reject(mpgc::topics::kTracks, why);
+    });
 
     // The whole chart needs no own position: publish it at once for planners that start first.
     if (st->region.whole_chart()) publish_fixed({0, 0});
 
-    c->every(p.moving_period, [c, &p, st, moving_out] {
+    c->every(p.moving_period, [c, &p, st, moving_out, set_problem] {
+      using Feed = om::MovingObstacleFeed::Feed;
       msg::MovingObstacles m;
       m.header = c->header();
-      if (st->tracks) {
-        m.t_valid_ns = st->tracks->header.stamp_ns;
-        for (const auto& t : st->tracks->tracks) {
-          om::TargetState ts;
-          ts.id = t.id;
-          ts.mmsi = t.mmsi;
-          ts.x = t.x;
-          ts.y = t.y;
-          ts.vx = t.vx;
-          ts.vy = t.vy;
-          ts.var_x = t.cov[0];
-          ts.var_y = t.cov[5];
-          ts.length = t.length;
-          ts.tentative = t.status == msg::TrackStatus::TRACK_TENTATIVE;
-          ts.deleted = t.status == msg::TrackStatus::TRACK_DELETED;
-          const std::string why = om::check_target(ts, p.domain);
-          if (why == "deleted" || why == "tentative") {
-            c->count("tracks_skipped_" + why);
-            continue;
-          }
-          if (!why.empty()) {
-            c->reject(mpgc::topics::kTracks, why);
-            continue;
-          }
-          const auto o = om::to_moving_obstacle(ts, p.domain);
-          msg::MovingObstacle mo;
-          mo.id = o.id;
-          mo.mmsi = o.mmsi;
-          mo.x = o.x;
-          mo.y = o.y;
-          mo.vx = o.vx;
-          mo.vy = o.vy;
-          mo.radius = o.radius;
-          mo.position_std = o.position_std;
-          m.obstacles.push_back(mo);
-        }
-      } else {
-        m.t_valid_ns = m.header.stamp_ns;  // no tracks yet: an empty, current list
+      const auto out = st->feed.at(m.header.stamp_ns);
+      m.t_valid_ns = out.t_valid_ns;
+      for (const auto& o : out.obstacles) {
+        msg::MovingObstacle mo;
+        mo.id = o.id;
+        mo.mmsi = o.mmsi;
+        mo.x = o.x;
+        mo.y = o.y;
+        mo.vx = o.vx;
+        mo.vy = o.vy;
+        mo.radius = o.radius;
+        mo.position_std = o.position_std;
+        m.obstacles.push_back(mo);
       }
+      if (!out.aged_out.empty()) {
+        c->count("tracks_aged_out", out.aged_out.size());
+        for (const uint32_t id : out.aged_out)
+          c->log().info("track {} dropped: last measured more than tracks.max_age = {} s ago", id, p.aging.max_age);
+      }
+      // Silence: explicit, once per change. The last obstacles go on (their uncertainty growing)
+      // until each is tracks.max_age old; then the list is empty and only health says why.
+      if (out.feed == Feed::kSilent && st->last_feed != Feed::kSilent) {
+        c->count("tracks_timeout");
+        const std::string d = fmt::format("no tracks from situational_awareness for {:.0f} s", out.silence);
+        if (st->feed.has_list()) {
+          c->log().warn("{} (tracks.timeout = {} s): predicting the last {} obstacles forward until tracks.max_age = {} s",
+                        d, p.aging.timeout, m.obstacles.size(), p.aging.max_age);
+          set_problem("tracks", d + ", predicting the last obstacles forward");
+        } else {
+          c->log().warn("{} since start (tracks.timeout = {} s): publishing no moving obstacles", d, p.aging.timeout);
+          set_problem("tracks", d + " since start");
+        }
+      }
+      if (out.feed == Feed::kSilent && m.obstacles.empty() && st->feed.has_list() && !st->emptied) {
+        st->emptied = true;
+        c->count("moving_emptied");
+        const std::string d =
+            fmt::format("no tracks from situational_awareness for {:.0f} s: every track aged out, publishing none",
+                        out.silence);
+        c->log().warn("{}", d);
+        set_problem("tracks", d);
+      }
+      if (out.feed != Feed::kSilent && st->last_feed == Feed::kSilent) {
+        c->log().info("tracks from situational_awareness again");
+        st->emptied = false;
+        set_problem("tracks", "");
+      }
+      st->last_feed = out.feed;
       moving_out->write(m);
     });
 
     if (p.watch_period > 0.0)
-      c->every(p.watch_period, [c, &p, st, frame, files, set_chart, publish_fixed] {
+      c->every(p.watch_period, [c, &p, st, frame, files, set_chart, publish_fixed, set_problem] {
         const std::string now = chart_stamp(files);
         if (now == st->stamp) return;
         st->stamp = now;
         try {
           set_chart(load_chart(p, frame, files));
           c->count("chart_reloaded");
-          c->set_health(msg::HealthState::HEALTH_OK, "");
+          set_problem("chart", "");
           c->log().info("chart changed on disk: reloaded, {} points", st->chart.points.size());
           if (st->own) publish_fixed(*st->own);
           else if (st->region.whole_chart()) publish_fixed({0, 0});
         } catch (const std::exception& e) {
           c->reject("chart", std::string("reload failed, keeping the previous chart: ") + e.what());
-          c->set_health(msg::HealthState::HEALTH_DEGRADED, std::string("chart reload failed: ") + e.what());
+          set_problem("chart", std::string("chart reload failed: ") + e.what());
         }
       });
   });

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "mpgc/dds/dds.hpp"
+#include "mpgc/msg/core.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
 #include "mpgc/msg/tracks.hpp"
@@ -35,7 +36,9 @@ TEST(ObstacleManagerProcess, LateJoinerGetsFixedObstaclesAndTracksBecomeMoving) 
   Process proc({mpgc::testing::bin_dir() + "/mpgc_obstacle_manager", "--domain", std::to_string(domain), "--set",
                 "chart.files=" + mpgc::testing::shared_data("chart/crop_annapolis_LNDARE.geojson"), "--set",
                 "chart.origin_lat=38.965", "--set", "chart.origin_lon=-76.45", "--set", "region.half_size=0",
-                "--set", "chart.shapes=circle 0 0 100", "--set", "moving.period=0.1", "--log-level", "warn"});
+                "--set", "chart.shapes=circle 0 0 100", "--set", "moving.period=0.1",
+                // No growth, so the values come back exactly (growth: test_obstacle_manager_logic).
+                "--set", "tracks.speed_std=0", "--log-level", "warn"});
   mpgc::dds::Participant part(static_cast<uint32_t>(domain));
   // Join late: the component has loaded the chart and published before this reader exists.
   std::this_thread::sleep_for(std::chrono::seconds(2));
@@ -60,7 +63,9 @@ TEST(ObstacleManagerProcess, LateJoinerGetsFixedObstaclesAndTracksBecomeMoving) 
   mpgc::dds::Topic<mpgc::msg::MovingObstacles> moving_topic(part, mpgc::topics::kMovingObstacles);
   mpgc::dds::Reader<mpgc::msg::MovingObstacles> moving(part, moving_topic, mpgc::dds::QosProfile::state());
   mpgc::msg::TrackList tl;
-  tl.header.stamp_ns = 123456789;
+  // On the component's clock (wall): an older stamp would be a track aged out long ago.
+  const int64_t stamp = dds_time();
+  tl.header.stamp_ns = stamp;
   mpgc::msg::Track good{};
   good.id = 7;
   good.x = 500;
@@ -82,7 +87,7 @@ TEST(ObstacleManagerProcess, LateJoinerGetsFixedObstaclesAndTracksBecomeMoving) 
   bool got = false;
   for (int i = 0; i < 100 && !got; ++i) {
     tracks.write(tl);
-    got = wait_for(moving, m, [](const auto& v) { return v.t_valid_ns == 123456789; }, 0.2);
+    got = wait_for(moving, m, [stamp](const auto& v) { return v.t_valid_ns == stamp; }, 0.2);
   }
   ASSERT_TRUE(got);
   ASSERT_EQ(m.obstacles.size(), 1u);  // NaN track rejected, deleted track skipped
@@ -91,6 +96,82 @@ TEST(ObstacleManagerProcess, LateJoinerGetsFixedObstaclesAndTracksBecomeMoving) 
   EXPECT_EQ(m.obstacles[0].vy, -1.0);
   EXPECT_EQ(m.obstacles[0].radius, 200.0);
   EXPECT_EQ(m.obstacles[0].position_std, 5.0);
+  EXPECT_TRUE(proc.running());
+}
+
+// Issue 15: when sa/tracks goes silent the component says so on health, keeps the last obstacles
+// (uncertainty growing) until tracks.max_age, then publishes an empty list; tracks again: OK.
+TEST(ObstacleManagerProcess, SilentTracksDegradeHealthAndAgeOutToAnEmptyList) {
+  const int domain = mpgc::testing::unique_domain();
+  Process proc({mpgc::testing::bin_dir() + "/mpgc_obstacle_manager", "--domain", std::to_string(domain), "--set",
+                "chart.shapes=circle 0 0 100", "--set", "region.half_size=0", "--set", "moving.period=0.1", "--set",
+                "tracks.timeout=1", "--set", "tracks.max_age=3", "--set", "tracks.speed_std=2", "--set",
+                "health.period=0.2", "--log-level", "warn"});
+  namespace msg = mpgc::msg;
+  mpgc::dds::Participant part(static_cast<uint32_t>(domain));
+  mpgc::dds::Topic<msg::TrackList> tracks_topic(part, mpgc::topics::kTracks);
+  mpgc::dds::Writer<msg::TrackList> tracks(part, tracks_topic, mpgc::dds::QosProfile::state());
+  mpgc::dds::Topic<msg::MovingObstacles> moving_topic(part, mpgc::topics::kMovingObstacles);
+  mpgc::dds::Reader<msg::MovingObstacles> moving(part, moving_topic, mpgc::dds::QosProfile::state());
+  mpgc::dds::Topic<msg::ComponentHealth> health_topic(part, mpgc::topics::kHealth);
+  mpgc::dds::Reader<msg::ComponentHealth> health(part, health_topic, mpgc::dds::QosProfile::latched());
+  auto track_list = [] {
+    msg::TrackList tl;
+    tl.header.stamp_ns = dds_time();
+    msg::Track t{};
+    t.id = 3;
+    t.x = 100;
+    t.vx = 1;
+    t.cov[0] = t.cov[5] = 9;
+    t.length = NAN;
+    t.since_update = 0.5;
+    t.status = msg::TrackStatus::TRACK_CONFIRMED;
+    tl.tracks = {t};
+    return tl;
+  };
+  // Fresh tracks: published, health OK.
+  msg::MovingObstacles m;
+  bool got = false;
+  for (int i = 0; i < 100 && !got; ++i) {
+    tracks.write(track_list());
+    got = wait_for(moving, m, [](const auto& v) { return v.obstacles.size() == 1; }, 0.1);
+  }
+  ASSERT_TRUE(got);
+  msg::ComponentHealth h;
+  ASSERT_TRUE(wait_for(health, h, [](const auto& v) { return v.state == msg::HealthState::HEALTH_OK; }, 10.0));
+  const int64_t last_stamp = dds_time();
+  tracks.write(track_list());
+  // Silence: degraded with the reason, the obstacle still there and its uncertainty grown.
+  // (A start slower than tracks.timeout may have said "... since start" before the first list.)
+  ASSERT_TRUE(wait_for(health, h, [](const auto& v) {
+    return v.state == msg::HealthState::HEALTH_DEGRADED && v.detail.find("predicting") != std::string::npos;
+  }, 10.0));
+  EXPECT_NE(h.detail.find("no tracks from situational_awareness for"), std::string::npos) << h.detail;
+  ASSERT_TRUE(wait_for(moving, m, [](const auto& v) { return v.obstacles.size() == 1; }, 2.0));
+  EXPECT_GT(m.obstacles[0].position_std, 3.5);  // sqrt(3^2 + (2 m/s x > 1 s)^2) > 3.6
+  EXPECT_GT(m.obstacles[0].radius, 50.0);
+  EXPECT_LE(m.t_valid_ns, dds_time());
+  // After max_age: an empty list, valid now; health says every track aged out.
+  ASSERT_TRUE(wait_for(moving, m, [](const auto& v) { return v.obstacles.empty(); }, 10.0));
+  EXPECT_GT(m.t_valid_ns, last_stamp + 2'000'000'000);
+  ASSERT_TRUE(wait_for(health, h, [](const auto& v) {
+    return v.detail.find("every track aged out") != std::string::npos;
+  }, 10.0));
+  auto counter = [&h](const std::string& name) {
+    for (const auto& c : h.counters)
+      if (c.name == name) return c.value;
+    return uint64_t{0};
+  };
+  EXPECT_GE(counter("tracks_timeout"), 1u);
+  EXPECT_EQ(counter("tracks_aged_out"), 1u);
+  EXPECT_EQ(counter("moving_emptied"), 1u);
+  // Tracks again: OK.
+  got = false;
+  for (int i = 0; i < 100 && !got; ++i) {
+    tracks.write(track_list());
+    got = wait_for(health, h, [](const auto& v) { return v.state == msg::HealthState::HEALTH_OK; }, 0.1);
+  }
+  EXPECT_TRUE(got);
   EXPECT_TRUE(proc.running());
 }
 

@@ -105,3 +105,148 @@ TEST(Moving, TracksBecomeObstaclesWithDomain) {
   t.length = -4;
   EXPECT_NE(om::check_target(t, p).find("length"), std::string::npos);
 }
+
+// Issue 15: stale tracks age out, uncertainty grows with age, silence is reported.
+namespace {
+constexpr int64_t kS = 1'000'000'000;  // [ns] per second
+
+om::TargetState target(uint32_t id, double since_update) {
+  om::TargetState t;
+  t.id = id;
+  t.x = 1000;
+  t.y = 2000;
+  t.vx = 5;
+  t.vy = 0;
+  t.var_x = 25;  // sigma 5 m
+  t.var_y = 9;
+  t.length = 100;  // radius 200 m
+  t.since_update = since_update;
+  return t;
+}
+}  // namespace
+
+TEST(Aging, UncertaintyGrowsWithTimeAndIsUnchangedAtZero) {
+  om::AgingParams a;
+  a.speed_std = 2.0;
+  a.radius_sigmas = 3.0;
+  const auto o = om::to_moving_obstacle(target(1, 0), {});
+  const auto same = om::grow_uncertainty(o, 0.0, a);
+  EXPECT_EQ(same.position_std, o.position_std);  // bit for bit: fresh lists give today's values
+  EXPECT_EQ(same.radius, o.radius);
+  const auto later = om::grow_uncertainty(o, 10.0, a);
+  EXPECT_DOUBLE_EQ(later.position_std, std::sqrt(25.0 + 400.0));  // sigma^2 = sigma0^2 + (sigma_v t)^2
+  EXPECT_DOUBLE_EQ(later.radius, 200.0 + 3.0 * (std::sqrt(425.0) - 5.0));
+  EXPECT_EQ(later.x, o.x);  // positions stay at the time of validity: the planner extrapolates
+  double prev = o.position_std;
+  for (double t = 1; t < 100; t += 7) {
+    const auto g = om::grow_uncertainty(o, t, a);
+    EXPECT_GT(g.position_std, prev);
+    EXPECT_GE(g.radius, o.radius);
+    prev = g.position_std;
+  }
+  a.radius_sigmas = 0;
+  EXPECT_EQ(om::grow_uncertainty(o, 50.0, a).radius, o.radius);
+  for (double bad : {-1.0, static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
+    om::AgingParams b;
+    b.max_age = bad;
+    EXPECT_THROW(b.validate(), std::invalid_argument);
+    b = {};
+    b.speed_std = bad;
+    EXPECT_THROW(b.validate(), std::invalid_argument);
+  }
+}
+
+TEST(Aging, FreshListIsPublishedAsToday) {
+  om::MovingObstacleFeed feed({}, {});
+  feed.receive(100 * kS, {target(1, 3.0)}, 100 * kS);
+  const auto out = feed.at(100 * kS);
+  EXPECT_EQ(out.feed, om::MovingObstacleFeed::Feed::kFresh);
+  EXPECT_EQ(out.t_valid_ns, 100 * kS);
+  ASSERT_EQ(out.obstacles.size(), 1u);
+  const auto today = om::to_moving_obstacle(target(1, 3.0), {});
+  EXPECT_EQ(out.obstacles[0].position_std, today.position_std);
+  EXPECT_EQ(out.obstacles[0].radius, today.radius);
+  EXPECT_EQ(out.obstacles[0].x, today.x);
+}
+
+TEST(Aging, TrackOlderThanMaxAgeIsDroppedAndReportedOnce) {
+  om::AgingParams a;
+  a.max_age = 60;
+  om::MovingObstacleFeed feed({}, a);
+  // A list with one young and one old track (SA keeps tracks longer than we do).
+  feed.receive(0, {target(1, 1.0), target(2, 61.0)}, 0);
+  auto out = feed.at(0);
+  ASSERT_EQ(out.obstacles.size(), 1u);
+  EXPECT_EQ(out.obstacles[0].id, 1u);
+  EXPECT_EQ(out.aged_out, std::vector<uint32_t>{2});
+  // The same list again: track 2 is still dropped but not counted again.
+  feed.receive(kS / 2, {target(1, 1.5), target(2, 61.5)}, kS / 2);
+  out = feed.at(kS / 2);
+  EXPECT_EQ(out.obstacles.size(), 1u);
+  EXPECT_TRUE(out.aged_out.empty());
+  // Track 2 measured again: published, and its next ageing is reported again.
+  feed.receive(kS, {target(2, 0.0)}, kS);
+  EXPECT_EQ(feed.at(kS).obstacles.size(), 1u);
+  feed.receive(2 * kS, {target(2, 70.0)}, 2 * kS);
+  EXPECT_EQ(feed.at(2 * kS).aged_out, std::vector<uint32_t>{2});
+}
+
+TEST(Aging, SilenceIsReportedObstaclesArePredictedUntilMaxAgeThenEmpty) {
+  om::AgingParams a;
+  a.max_age = 60;
+  a.timeout = 5;
+  a.speed_std = 1;
+  om::MovingObstacleFeed feed({}, a);
+  EXPECT_EQ(feed.at(0).feed, om::MovingObstacleFeed::Feed::kWaiting);
+  EXPECT_EQ(feed.at(4 * kS).feed, om::MovingObstacleFeed::Feed::kWaiting);
+  const auto none = feed.at(6 * kS);  // nothing since start for more than the timeout
+  EXPECT_EQ(none.feed, om::MovingObstacleFeed::Feed::kSilent);
+  EXPECT_EQ(none.t_valid_ns, 6 * kS);
+  EXPECT_TRUE(none.obstacles.empty());
+
+  const int64_t t0 = 10 * kS;
+  feed.receive(t0, {target(1, 0.0), target(2, 30.0)}, t0);
+  EXPECT_EQ(feed.at(t0 + 5 * kS).feed, om::MovingObstacleFeed::Feed::kFresh);
+  auto out = feed.at(t0 + 6 * kS);
+  EXPECT_EQ(out.feed, om::MovingObstacleFeed::Feed::kSilent);
+  EXPECT_DOUBLE_EQ(out.silence, 6.0);
+  ASSERT_EQ(out.obstacles.size(), 2u);  // still predicted forward (from the list's stamp)
+  EXPECT_EQ(out.t_valid_ns, t0);
+  EXPECT_DOUBLE_EQ(out.obstacles[0].position_std, std::sqrt(25.0 + 36.0));
+  // Track 2 was 30 s old at the stamp: gone after 30 s more; track 1 after 60 s.
+  out = feed.at(t0 + 31 * kS);
+  ASSERT_EQ(out.obstacles.size(), 1u);
+  EXPECT_EQ(out.obstacles[0].id, 1u);
+  EXPECT_EQ(out.aged_out, std::vector<uint32_t>{2});
+  EXPECT_EQ(feed.at(t0 + 60 * kS).obstacles.size(), 1u);  // exactly max_age: kept
+  out = feed.at(t0 + 61 * kS);
+  EXPECT_TRUE(out.obstacles.empty());
+  EXPECT_EQ(out.aged_out, std::vector<uint32_t>{1});
+  EXPECT_EQ(out.t_valid_ns, t0 + 61 * kS);  // an empty list valid now, not the old stamp
+  EXPECT_EQ(out.feed, om::MovingObstacleFeed::Feed::kSilent);
+  // Tracks again: fresh.
+  feed.receive(t0 + 62 * kS, {target(3, 0.0)}, t0 + 62 * kS);
+  out = feed.at(t0 + 62 * kS);
+  EXPECT_EQ(out.feed, om::MovingObstacleFeed::Feed::kFresh);
+  EXPECT_EQ(out.obstacles.size(), 1u);
+}
+
+TEST(Aging, BadTracksAreRefusedOnArrivalWithAReason) {
+  om::MovingObstacleFeed feed({}, {});
+  auto nan_age = target(1, NAN);
+  auto neg_age = target(2, -1.0);
+  auto gone = target(3, 0.0);
+  gone.deleted = true;
+  auto tent = target(4, 0.0);
+  tent.tentative = true;
+  const auto r = feed.receive(0, {nan_age, neg_age, gone, tent, target(5, 0.0)}, 0);
+  ASSERT_EQ(r.rejected.size(), 2u);
+  EXPECT_NE(r.rejected[0].find("not finite"), std::string::npos);
+  EXPECT_NE(r.rejected[1].find("negative since_update"), std::string::npos);
+  EXPECT_EQ(r.deleted, 1u);
+  EXPECT_EQ(r.tentative, 1u);
+  EXPECT_EQ(feed.at(0).obstacles.size(), 1u);
+  // A stamp ahead of our clock is age 0, not negative.
+  feed.receive(10 * kS, {target(5, 0.0)}, 9 * kS);
+  EXPECT_EQ(feed.at(9 * kS).obstacles[0].position_std, 5.0);
+}

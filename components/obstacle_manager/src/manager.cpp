@@ -1,6 +1,9 @@
 #include "mpgc/obstacle_manager/manager.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <stdexcept>
 #include <sstream>
 #include <vector>
 
@@ -89,9 +92,10 @@ void DomainParams::validate() const {
 std::string check_target(const TargetState& t, const DomainParams& p) {
   if (t.deleted) return "deleted";
   if (t.tentative && !p.tentative) return "tentative";
-  for (double v : {t.x, t.y, t.vx, t.vy, t.var_x, t.var_y})
+  for (double v : {t.x, t.y, t.vx, t.vy, t.var_x, t.var_y, t.since_update})
     if (!std::isfinite(v)) return "track " + std::to_string(t.id) + ": state is not finite";
   if (t.var_x < 0.0 || t.var_y < 0.0) return "track " + std::to_string(t.id) + ": negative position variance";
+  if (t.since_update < 0.0) return "track " + std::to_string(t.id) + ": negative since_update";
   const double speed = std::hypot(t.vx, t.vy);
   if (speed > p.max_speed)
     return "track " + std::to_string(t.id) + ": speed " + std::to_string(speed) + " m/s > max " + std::to_string(p.max_speed);
@@ -112,6 +116,79 @@ MovingObstacleOut to_moving_obstacle(const TargetState& t, const DomainParams& p
   o.radius = std::isnan(t.length) ? p.min_radius : std::max(p.min_radius, p.lengths * t.length);
   o.position_std = std::sqrt(std::max(t.var_x, t.var_y));
   return o;
+}
+
+void AgingParams::validate() const {
+  if (!(max_age > 0.0) || !std::isfinite(max_age))
+    throw std::invalid_argument("AgingParams.max_age = " + std::to_string(max_age) + " s must be > 0");
+  if (!(timeout > 0.0) || !std::isfinite(timeout))
+    throw std::invalid_argument("AgingParams.timeout = " + std::to_string(timeout) + " s must be > 0");
+  if (!(speed_std >= 0.0) || !std::isfinite(speed_std))
+    throw std::invalid_argument("AgingParams.speed_std = " + std::to_string(speed_std) + " m/s must be >= 0");
+  if (!(radius_sigmas >= 0.0) || !std::isfinite(radius_sigmas))
+    throw std::invalid_argument("AgingParams.radius_sigmas = " + std::to_string(radius_sigmas) + " must be >= 0");
+}
+
+MovingObstacleOut grow_uncertainty(MovingObstacleOut o, double dt, const AgingParams& a) {
+  if (!(dt > 0.0)) return o;
+  const double s0 = o.position_std, g = a.speed_std * dt;
+  o.position_std = std::sqrt(s0 * s0 + g * g);
+  o.radius += a.radius_sigmas * (o.position_std - s0);
+  return o;
+}
+
+MovingObstacleFeed::MovingObstacleFeed(DomainParams d, AgingParams a) : d_(d), a_(a) {
+  d_.validate();
+  a_.validate();
+}
+
+MovingObstacleFeed::Received MovingObstacleFeed::receive(int64_t stamp_ns, const std::vector<TargetState>& targets,
+                                                         int64_t now_ns) {
+  Received r;
+  held_.clear();
+  std::set<uint32_t> ids;
+  for (const auto& t : targets) {
+    const std::string why = check_target(t, d_);
+    if (why == "deleted") ++r.deleted;
+    else if (why == "tentative") ++r.tentative;
+    else if (!why.empty()) r.rejected.push_back(why);
+    else {
+      held_.push_back({to_moving_obstacle(t, d_), t.since_update});
+      ids.insert(t.id);
+    }
+  }
+  // Forget what was reported for tracks no longer listed (bounded memory, ids are never reused).
+  for (auto it = reported_.begin(); it != reported_.end();) it = ids.count(*it) ? std::next(it) : reported_.erase(it);
+  list_stamp_ns_ = stamp_ns;
+  arrival_ns_ = now_ns;
+  return r;
+}
+
+MovingObstacleFeed::Output MovingObstacleFeed::at(int64_t now_ns) {
+  if (!first_call_ns_) first_call_ns_ = now_ns;
+  Output out;
+  const int64_t since = arrival_ns_ ? *arrival_ns_ : *first_call_ns_;
+  out.silence = std::max(0.0, static_cast<double>(now_ns - since) / 1e9);
+  if (!list_stamp_ns_) {
+    out.t_valid_ns = now_ns;  // no tracks yet: an empty, current list
+    out.feed = out.silence > a_.timeout ? Feed::kSilent : Feed::kWaiting;
+    return out;
+  }
+  out.feed = out.silence > a_.timeout ? Feed::kSilent : Feed::kFresh;
+  // A stamp ahead of our clock (another host's clock) counts as age 0, never as negative age.
+  const double dt = std::max(0.0, static_cast<double>(now_ns - *list_stamp_ns_) / 1e9);
+  out.t_valid_ns = *list_stamp_ns_;
+  for (const auto& h : held_) {
+    if (h.since_update + dt > a_.max_age) {
+      if (reported_.insert(h.o.id).second) out.aged_out.push_back(h.o.id);
+      continue;
+    }
+    reported_.erase(h.o.id);  // young again (a new measurement): report its next ageing too
+    out.obstacles.push_back(grow_uncertainty(h.o, dt, a_));
+  }
+  // Nothing left: an empty list valid now, not an old stamp nobody should extrapolate from.
+  if (out.obstacles.empty()) out.t_valid_ns = now_ns;
+  return out;
 }
 
 }  // namespace mpgc::obstacle_manager

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "mpgc/obstacle_manager/chart.hpp"
 #include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
@@ -60,6 +62,7 @@ struct TargetState {
   double vx = 0, vy = 0;   // [m/s]
   double var_x = 0, var_y = 0;  // [m^2] position variances (covariance diagonal)
   double length = std::numeric_limits<double>::quiet_NaN();  // [m] NaN when unknown
+  double since_update = 0;  // [s] since the last measurement, at the time of validity
   bool tentative = false;
   bool deleted = false;
 };
@@ -75,5 +78,64 @@ struct MovingObstacleOut {
 // Deleted and (unless enabled) tentative tracks give "deleted" / "tentative": not errors, skipped.
 std::string check_target(const TargetState& t, const DomainParams& p);
 MovingObstacleOut to_moving_obstacle(const TargetState& t, const DomainParams& p);
+
+// How old a track may get and how its uncertainty grows while nobody measures it (issue 15).
+// situational_awareness predicts its Kalman covariance to the list's stamp (so position_std
+// already grows with since_update there) and deletes a track silent for tracker.delete_after;
+// these cover the time after the stamp, which only the obstacle manager sees (no new list).
+struct AgingParams {
+  double max_age = 60.0;       // [s] a track whose last measurement is older is dropped
+  double timeout = 5.0;        // [s] no track list for this long: the feed is silent
+  double speed_std = 1.0;      // [m/s] velocity uncertainty of an unobserved target
+  double radius_sigmas = 2.0;  // [-] the domain radius grows by this many times the sigma growth
+  void validate() const;
+};
+
+// The obstacle `dt` seconds after its time of validity: sigma^2 = sigma0^2 + (speed_std dt)^2 and
+// radius = radius0 + radius_sigmas (sigma - sigma0). dt <= 0 returns `o` unchanged, so a list
+// published at its own stamp carries exactly to_moving_obstacle's values.
+MovingObstacleOut grow_uncertainty(MovingObstacleOut o, double dt, const AgingParams& a);
+
+// The latest track list, held between lists and aged: the obstacle manager's whole moving-obstacle
+// logic, fed with times from the caller (no clock here).
+//
+//   MovingObstacleFeed feed(domain, aging);
+//   auto r = feed.receive(list_stamp_ns, targets, now_ns);   // r.rejected: why each target was refused
+//   auto out = feed.at(now_ns);                               // every publication cycle
+//   if (out.feed == MovingObstacleFeed::Feed::kSilent) ...    // say so on health
+class MovingObstacleFeed {
+ public:
+  MovingObstacleFeed(DomainParams d, AgingParams a);
+
+  struct Received {
+    std::vector<std::string> rejected;  // one reason per refused target
+    uint32_t deleted = 0, tentative = 0;  // skipped, not errors
+  };
+  // A track list predicted to `stamp_ns` arrived at `now_ns`; it replaces the previous one.
+  Received receive(int64_t stamp_ns, const std::vector<TargetState>& targets, int64_t now_ns);
+
+  enum class Feed { kWaiting, kFresh, kSilent };  // no list yet (within timeout) / fresh / silent
+  struct Output {
+    int64_t t_valid_ns = 0;  // [ns] the list's stamp (positions hold then); `now` when there is none
+    std::vector<MovingObstacleOut> obstacles;  // uncertainty grown to `now`
+    std::vector<uint32_t> aged_out;  // track ids dropped for age, each reported once
+    Feed feed = Feed::kWaiting;
+    double silence = 0;  // [s] since the last list arrived (since the first call when none has)
+  };
+  // What to publish at `now_ns` (the caller's clock, the same as receive's).
+  Output at(int64_t now_ns);
+  bool has_list() const { return list_stamp_ns_.has_value(); }
+
+ private:
+  struct Held {
+    MovingObstacleOut o;
+    double since_update;  // [s] at the list's stamp
+  };
+  DomainParams d_;
+  AgingParams a_;
+  std::vector<Held> held_;
+  std::optional<int64_t> list_stamp_ns_, arrival_ns_, first_call_ns_;
+  std::set<uint32_t> reported_;  // ids already reported as aged out
+};
 
 }  // namespace mpgc::obstacle_manager
