@@ -1,6 +1,8 @@
 // mpgc_launch: starts the components of a YAML launch file, prefixes every line of their output
 // with the component's name, forwards SIGINT/SIGTERM, restarts crashed components by policy and
-// exits non-zero when a required component fails. See deploy/launch/README.md for the format.
+// exits non-zero when a required component fails, and prints the system's health (which process
+// is down, which component degraded or stale) from the processes it runs and the `health` topic.
+// See deploy/launch/README.md for the format.
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -17,6 +19,8 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -25,6 +29,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include "launch_file.hpp"
+#include "mpgc/dds/dds.hpp"
+#include "mpgc/msg/core.hpp"
+#include "mpgc/runtime/health_board.hpp"
+#include "mpgc/topics.hpp"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -69,8 +77,10 @@ bool start(Proc& p) {
     std::vector<char*> cargv;
     for (auto& a : argv) cargv.push_back(a.data());
     cargv.push_back(nullptr);
+    close_range(3, ~0U, 0);  // not the launcher's DDS sockets: they are not the component's
     execvp(cargv[0], cargv.data());
-    std::fprintf(stderr, "cannot execute '%s': %s\n", cargv[0], std::strerror(errno));
+    // No stdio after fork: a DDS thread of the launcher may have held stderr's lock.
+    dprintf(STDERR_FILENO, "cannot execute '%s': %s\n", cargv[0], std::strerror(errno));
     _exit(127);
   }
   setpgid(pid, pid);
@@ -113,6 +123,80 @@ std::string describe(int status) {
   return "stopped";
 }
 
+int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
+
+// The system health view: the processes the launcher runs and the components' `health` samples,
+// through a plain DDS reader (the launcher is no component: it lives on the wall clock whatever
+// clock the components use). Printed every `period` and at once when a component gets into or out
+// of trouble (down, degraded, stale).
+class HealthView {
+ public:
+  HealthView(double period, double component_period, const std::vector<Proc>& procs, int domain)
+      : period_(period), board_({component_period, 3}), next_(Clock::now() + to_duration(period)) {
+    const int64_t now = steady_ns();
+    for (const auto& p : procs) {
+      // Only mpgc components publish health; others (gpsd, a shell) are judged by their process.
+      const std::string exe = fs::path(p.spec.executable).filename().string();
+      board_.expect(p.spec.name, now, exe.rfind("mpgc_", 0) == 0);
+    }
+    board_.changes(now);  // prime: the start itself is no news
+    if (domain < 0) return;   // no DDS: processes only
+    try {
+      participant_ = std::make_unique<mpgc::dds::Participant>(static_cast<uint32_t>(domain));
+      topic_ = std::make_unique<mpgc::dds::Topic<mpgc::msg::ComponentHealth>>(*participant_, mpgc::topics::kHealth);
+      reader_ = std::make_unique<mpgc::dds::Reader<mpgc::msg::ComponentHealth>>(*participant_, *topic_,
+                                                                                mpgc::dds::QosProfile::latched());
+    } catch (const std::exception& e) {
+      reader_.reset();
+      topic_.reset();
+      participant_.reset();
+      emit("launch", std::string("health view from process states only: cannot read the health topic: ") + e.what());
+    }
+  }
+  void started(const Proc& p) { board_.process_started(p.spec.name, steady_ns()); }
+  void gone(const Proc& p, const std::string& why) { board_.process_gone(p.spec.name, why, steady_ns()); }
+
+  void update(bool quiet) {
+    const int64_t now = steady_ns();
+    if (reader_) {
+      try {
+        for (const auto& s : reader_->take()) board_.sample(s.value, now);
+      } catch (const std::exception& e) {
+        emit("launch", std::string("health topic: ") + e.what());
+      }
+    }
+    bool news = false;
+    for (const auto& v : board_.changes(now)) {
+      const bool trouble = v.status == mpgc::rt::Status::kDown || v.status == mpgc::rt::Status::kDegraded ||
+                           v.status == mpgc::rt::Status::kStale;
+      bool& was = troubled_[v.name];
+      news = news || trouble || was;  // into trouble, or on the way out of it (restarted, ok)
+      was = trouble || (was && v.status != mpgc::rt::Status::kUp);
+    }
+    const bool due = Clock::now() >= next_;
+    if (due) next_ = Clock::now() + to_duration(period_);
+    if (!quiet && (news || due)) emit("launch", "health: " + board_.line(now));
+  }
+
+ private:
+  static Clock::duration to_duration(double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  }
+  double period_;
+  mpgc::rt::HealthBoard board_;
+  Clock::time_point next_;
+  std::map<std::string, bool> troubled_;
+  std::unique_ptr<mpgc::dds::Participant> participant_;
+  std::unique_ptr<mpgc::dds::Topic<mpgc::msg::ComponentHealth>> topic_;
+  std::unique_ptr<mpgc::dds::Reader<mpgc::msg::ComponentHealth>> reader_;
+};
+
+static_assert(static_cast<int>(mpgc::msg::HealthState::HEALTH_STOPPING) == static_cast<int>(mpgc::rt::Reported::kStopping) &&
+                  static_cast<int>(mpgc::msg::HealthState::HEALTH_DEGRADED) == static_cast<int>(mpgc::rt::Reported::kDegraded),
+              "rt::Reported mirrors msg::HealthState");
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -127,6 +211,11 @@ int main(int argc, char** argv) {
   app.add_option("--secure", secure,
                  "DDS Security: every component joins with its identity (certificate CN = its name) from this folder "
                  "(deploy/security/make-pki.sh DIR): its security.xml is added to CYCLONEDDS_URI");
+  double health_period = 10.0;
+  app.add_option("--health-period", health_period,
+                 "[s] print the system health every this many seconds, and at once when a component changes state "
+                 "(down, restarted, degraded, stale, ok); 0 = no health view")
+      ->check(CLI::Range(0.0, 86400.0));
   CLI11_PARSE(app, argc, argv);
 
   mpgc::launch::LaunchFile lf;
@@ -169,10 +258,32 @@ int main(int argc, char** argv) {
     }
     procs.push_back(Proc{c});
   }
+  std::unique_ptr<HealthView> health;
+  if (health_period > 0.0) {
+    if (!secure.empty()) {
+      // The launcher has no identity of its own in the PKI: on a secured domain it would be an intruder.
+      emit("launch", "health view from process states only: --secure (the launcher joins no secured domain)");
+    }
+    int health_domain = lf.domain;
+    if (health_domain < 0) health_domain = std::getenv("MPGC_DOMAIN") != nullptr ? std::atoi(std::getenv("MPGC_DOMAIN")) : 0;
+    // Stale means silent for 3 of the components' health periods: the longest any of them was given.
+    double component_period = 1.0;
+    for (const auto& p : procs)
+      if (auto it = p.spec.set.find("health.period"); it != p.spec.set.end()) {
+        try {
+          component_period = std::max(component_period, std::stod(it->second));
+        } catch (const std::exception&) {
+        }  // the component refuses it itself
+      }
+    health = std::make_unique<HealthView>(health_period, component_period, procs, secure.empty() ? health_domain : -1);
+  }
   for (auto& p : procs) {
     if (!start(p)) {
       emit("launch", "cannot start " + p.spec.name + ": " + std::strerror(errno));
       p.done = p.failed = true;
+      if (health) health->gone(p, std::string("cannot start: ") + std::strerror(errno));
+    } else if (health) {
+      health->started(p);
     }
   }
 
@@ -233,6 +344,13 @@ int main(int argc, char** argv) {
       emit("launch", p.spec.name + " " + describe(status));
       const bool may_restart = !stopping && p.restarts < p.spec.max_restarts &&
                                (p.spec.restart == "always" || (p.spec.restart == "on-failure" && !ok));
+      if (health) {
+        std::string why = WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status)) + " (" +
+                                                    strsignal(WTERMSIG(status)) + ")"
+                                              : describe(status);
+        if (may_restart) why += ", restarting " + std::to_string(p.restarts + 1) + "/" + std::to_string(p.spec.max_restarts);
+        health->gone(p, why);
+      }
       if (may_restart) {
         p.waiting_restart = true;
         p.restart_at = Clock::now() + std::chrono::milliseconds(static_cast<int>(p.spec.restart_delay * 1000));
@@ -252,8 +370,14 @@ int main(int argc, char** argv) {
       ++p.restarts;
       emit("launch", "restarting " + p.spec.name + " (" + std::to_string(p.restarts) + "/" +
                          std::to_string(p.spec.max_restarts) + ")");
-      if (!start(p)) p.done = p.failed = true;
+      if (!start(p)) {
+        p.done = p.failed = true;
+        if (health) health->gone(p, std::string("cannot restart: ") + std::strerror(errno));
+      } else if (health) {
+        health->started(p);
+      }
     }
+    if (health) health->update(stopping);
 
     bool all_done = true;
     for (auto& p : procs) all_done = all_done && p.done && p.out_fd < 0;

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "mpgc/testing.hpp"
 
@@ -23,7 +24,7 @@ namespace {
 
 class Launch {
  public:
-  explicit Launch(const std::string& yaml) {
+  explicit Launch(const std::string& yaml, std::vector<std::string> extra = {}) {
     file_ = ::testing::TempDir() + "/launch_" + std::to_string(getpid()) + "_" + std::to_string(counter_++) + ".yaml";
     std::ofstream(file_) << yaml;
     int fds[2];
@@ -35,7 +36,12 @@ class Launch {
       close(fds[0]);
       const std::string exe = mpgc::testing::bin_dir() + "/mpgc_launch";
       const std::string domain = std::to_string(mpgc::testing::unique_domain());
-      execl(exe.c_str(), exe.c_str(), file_.c_str(), "--domain", domain.c_str(), "--stop-timeout", "5", nullptr);
+      std::vector<std::string> args = {exe, file_, "--domain", domain, "--stop-timeout", "5"};
+      args.insert(args.end(), extra.begin(), extra.end());
+      std::vector<char*> argv;
+      for (auto& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execv(exe.c_str(), argv.data());
       _exit(127);
     }
     close(fds[1]);
@@ -199,6 +205,53 @@ components:
   EXPECT_EQ(zombies, 0) << "orphans left as zombies under the launcher";
   EXPECT_EQ(all, 1) << "only the shell is left";
   EXPECT_EQ(l.wait_exit(10.0), 0) << l.output();
+}
+
+// The health view: every --health-period a line about every component, and at once when one goes
+// down (how, and that it is restarted), stale (SIGSTOP: alive but silent) or comes back.
+TEST(Launcher, HealthViewSaysWhichComponentIsDownOrStaleAndWhenItIsBack) {
+  Launch l(R"(
+components:
+  - name: talker
+    executable: mpgc_test_talker
+    set: {rate: 20, health.period: 0.5}
+    restart: on-failure
+    max_restarts: 3
+    restart_delay: 0.5
+  - name: listener
+    executable: mpgc_test_listener
+    set: {health.period: 0.5}
+)", {"--health-period", "1"});
+  ASSERT_TRUE(l.wait_output(R"(\[launch\] health: all 2 up)", 30.0)) << l.output();
+  std::smatch m;
+  const std::string before = l.output();
+  ASSERT_TRUE(std::regex_search(before, m, std::regex(R"(started talker \(pid (\d+)\))")));
+  const pid_t talker = std::stoi(m[1]);
+  ASSERT_TRUE(std::regex_search(before, m, std::regex(R"(started listener \(pid (\d+)\))")));
+  const pid_t listener = std::stoi(m[1]);
+
+  // Killed: down at once, with how and the restart; then starting, then up again.
+  const size_t mark = l.output().size();
+  kill(talker, SIGKILL);
+  ASSERT_TRUE(l.wait_output(R"(\[launch\] health: talker down \(killed by signal 9 \(Killed\), restarting 1/3\); 1 up)", 10.0))
+      << l.output().substr(mark);
+  ASSERT_TRUE(l.wait_output(R"(restarting talker \(1/3\)[\s\S]*\[launch\] health: talker starting)", 10.0))
+      << l.output().substr(mark);
+  ASSERT_TRUE(l.wait_output(R"(health: talker starting[\s\S]*\[launch\] health: all 2 up)", 20.0)) << l.output().substr(mark);
+
+  // Stopped (SIGSTOP): its process is there but it says nothing: stale after 3 periods of 0.5 s.
+  const size_t mark2 = l.output().size();
+  kill(listener, SIGSTOP);
+  const bool stale = l.wait_output(R"(restarting talker[\s\S]*\[launch\] health: listener stale \(no health for \d)", 10.0);
+  kill(listener, SIGCONT);
+  ASSERT_TRUE(stale) << l.output().substr(mark2);
+  ASSERT_TRUE(l.wait_output(R"(listener stale[\s\S]*\[launch\] health: all 2 up)", 20.0)) << l.output().substr(mark2);
+
+  l.signal(SIGTERM);
+  EXPECT_EQ(l.wait_exit(20.0), 0) << l.output();
+  // Stopping is said by the exits themselves, not by health lines.
+  const std::string after_stop = l.output().substr(l.output().find("received Terminated"));
+  EXPECT_EQ(after_stop.find("health:"), std::string::npos) << after_stop;
 }
 
 TEST(Launcher, BadLaunchFileIsRejectedWithItsError) {
