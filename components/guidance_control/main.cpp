@@ -44,9 +44,12 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("heading.kp", &h.kp, d.heading.kp, "rad/rad", 0.0, 100.0, "heading PID proportional gain");
   ps.add("heading.ki", &h.ki, d.heading.ki, "1/s", 0.0, 10.0, "heading PID integral gain");
   ps.add("heading.kd", &h.kd, d.heading.kd, "s", 0.0, 1e4, "heading PID gain on the measured yaw rate");
-  ps.add("heading.max_rudder", &h.max_rudder, d.heading.max_rudder, "rad", 0.01, 1.0, "rudder angle limit");
+  // The actuator limits' defaults are the default ship's (mpgc/ship/actuator_limits.hpp), the ones the
+  // simulator's KVLCC2 obeys; on another ship set them to its steering gear's and engine's.
+  ps.add("heading.max_rudder", &h.max_rudder, d.heading.max_rudder, "rad", 0.01, 1.0,
+         "rudder angle limit: the steering gear's (KVLCC2 35 deg); orders are clipped to it");
   ps.add("heading.max_rudder_rate", &h.max_rudder_rate, d.heading.max_rudder_rate, "rad/s", 0.001, 1.0,
-         "rudder rate limit");
+         "rudder rate limit: the steering gear's (KVLCC2 2.32 deg/s)");
   ps.add("heading.integral_limit", &h.integral_limit, d.heading.integral_limit, "rad", 0.0, 1.0,
          "bound of the integral's rudder contribution");
   ps.add("heading.nomoto_K", &p.nomoto_K, 0.0, "1/s", 0.0, 10.0,
@@ -63,11 +66,13 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
          "bound of the integral's contribution");
   ps.add("speed.integral_zone", &s.integral_zone, d.speed.integral_zone, "m/s", 0.001, 100.0,
          "speed PI integrates only while |speed error| < this");
-  ps.add("speed.min_rpm", &s.min_rpm, d.speed.min_rpm, "1/min", -1000.0, 1000.0, "lowest rpm command");
-  ps.add("speed.max_rpm", &s.max_rpm, d.speed.max_rpm, "1/min", 0.0, 1000.0, "highest rpm command");
+  ps.add("speed.min_rpm", &s.min_rpm, d.speed.min_rpm, "1/min", -1000.0, 1000.0, "lowest rpm command (the engine's)");
+  ps.add("speed.max_rpm", &s.max_rpm, d.speed.max_rpm, "1/min", 0.0, 1000.0, "highest rpm command (the engine's)");
   ps.add("speed.max_rpm_rate", &s.max_rpm_rate, d.speed.max_rpm_rate, "1/min/s", 0.01, 1000.0, "rpm slew limit");
-  ps.add("plan.timeout", &p.gc.plan_timeout, d.plan_timeout, "s", 1.0, 86400.0, "no valid plan for this long -> safe mode");
-  ps.add("nav.timeout", &p.gc.nav_timeout, d.nav_timeout, "s", 0.1, 600.0, "own state older than this -> safe mode");
+  ps.add("plan.max_age", &p.gc.plan_max_age, d.plan_max_age, "s", 1.0, 86400.0,
+         "the plan followed may be this old (from its stamp); then, without a newer valid one, safe mode");
+  ps.add("nav.timeout", &p.gc.nav_timeout, d.nav_timeout, "s", 0.1, 600.0,
+         "own state older than this -> safe mode, rudder amidships, rpm reduced to safe_speed's");
   ps.add("safe_speed", &p.gc.safe_speed, d.safe_speed, "m/s", 0.1, 30.0, "speed in safe mode (heading held)");
   ps.add("arrival_speed", &p.gc.arrival_speed, d.arrival_speed, "m/s", 0.0, 30.0, "speed after the last waypoint");
 }
@@ -83,6 +88,7 @@ gc::PlanInput to_plan(const msg::Path& m) {
   }
   p.reason = m.reason;
   p.stamp = m.header.stamp_ns > 0 ? static_cast<double>(m.header.stamp_ns) * 1e-9 : std::nan("");
+  p.effective = m.effective_ns > 0 ? static_cast<double>(m.effective_ns) * 1e-9 : 0.0;
   p.waypoints.reserve(m.waypoints.size());
   for (const auto& w : m.waypoints) p.waypoints.push_back({w.x, w.y, w.speed});
   return p;
@@ -122,8 +128,12 @@ int main(int argc, char** argv) {
         c.reject(mpgc::topics::kPath, "plan " + std::to_string(m.plan_id) + ": " + why + " (last good plan kept)");
         return;
       }
-      c.log().info("plan {} taken: status {}, {} waypoints {}", m.plan_id, static_cast<int>(m.status),
-                   m.waypoints.size(), m.reason);
+      if (const auto held = ctl->held_plan(); held && held->first == m.plan_id)
+        c.log().info("plan {} held until it takes effect at t = {:.1f} s: status {}, {} waypoints {}", m.plan_id,
+                     held->second, static_cast<int>(m.status), m.waypoints.size(), m.reason);
+      else
+        c.log().info("plan {} taken: status {}, {} waypoints {}", m.plan_id, static_cast<int>(m.status),
+                     m.waypoints.size(), m.reason);
     });
 
     constexpr uint32_t kNeeded = msg::NAV_POSITION_VALID | msg::NAV_HEADING_VALID | msg::NAV_VELOCITY_VALID;
@@ -147,6 +157,9 @@ int main(int argc, char** argv) {
     c.every(1.0 / p.rate, [&c, &cmd_out, &status_out, ctl, t_now, last_mode, last_detail] {
       const gc::Command cmd = ctl->step(t_now());
       const gc::Status& st = cmd.status;
+      // The controller asked beyond a limit and the order was clipped to it (counted per cycle).
+      if (cmd.rudder_saturated) c.count("saturated.rudder");
+      if (cmd.rpm_saturated) c.count("saturated.rpm");
       msg::ActuatorCommand a;
       a.header = c.header();
       a.rudder = cmd.rudder;
@@ -164,9 +177,10 @@ int main(int argc, char** argv) {
       s.desired_speed = st.desired_speed;
       status_out.write(s);
       if (st.mode != *last_mode || st.detail != *last_detail) {
-        c.log().info("mode {}: {}", gc::to_string(st.mode), st.detail);
-        c.set_health(st.mode == gc::Mode::SafeMode ? msg::HealthState::HEALTH_DEGRADED : msg::HealthState::HEALTH_OK,
-                     st.mode == gc::Mode::SafeMode ? st.detail : "");
+        if (st.degraded) c.log().warn("mode {}: {}", gc::to_string(st.mode), st.detail);
+        else c.log().info("mode {}: {}", gc::to_string(st.mode), st.detail);
+        c.set_health(st.degraded ? msg::HealthState::HEALTH_DEGRADED : msg::HealthState::HEALTH_OK,
+                     st.degraded ? st.detail : "");
         *last_mode = st.mode;
         *last_detail = st.detail;
       }

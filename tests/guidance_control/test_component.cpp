@@ -59,7 +59,10 @@ struct Rig {
   msg::GuidanceStatus last_status;
   msg::ActuatorCommand last_cmd;
   uint64_t rejected = 0;
+  msg::HealthState health_state = msg::HealthState::HEALTH_STARTING;
+  std::string health_detail;
   int n_cmd = 0;
+  std::function<void(const msg::GuidanceStatus&)> on_status;
 
   explicit Rig(int domain)
       : part(static_cast<uint32_t>(domain)),
@@ -88,9 +91,16 @@ struct Rig {
       s.valid_mask = msg::NAV_POSITION_VALID | msg::NAV_HEADING_VALID | msg::NAV_VELOCITY_VALID | msg::NAV_RATE_VALID;
       nav.write(s);
       for (auto& c : cmd.take()) last_cmd = c.value, ++n_cmd;
-      for (auto& st : status.take()) last_status = st.value;
+      for (auto& st : status.take()) {
+        last_status = st.value;
+        if (on_status) on_status(st.value);
+      }
       for (auto& h : health.take())
-        if (h.value.component == "guidance_control") rejected = h.value.rejected_inputs;
+        if (h.value.component == "guidance_control") {
+          rejected = h.value.rejected_inputs;
+          health_state = h.value.state;
+          health_detail = h.value.detail;
+        }
       if (done && done()) return true;
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
@@ -103,7 +113,7 @@ struct Rig {
 TEST(GuidanceControlProcess, FollowsRejectsAndFallsBackToSafeMode) {
   const int domain = mpgc::testing::unique_domain();
   Process proc({mpgc::testing::bin_dir() + "/mpgc_guidance_control", "--domain", std::to_string(domain), "--set",
-                "rate=10", "--set", "plan.timeout=3", "--set", "health.period=0.2", "--log-level", "warn"});
+                "rate=10", "--set", "plan.max_age=3", "--set", "health.period=0.2", "--log-level", "warn"});
   Rig rig(domain);
   ASSERT_TRUE(rig.pump(15, [&] { return rig.n_cmd > 3 && rig.last_status.header.seq > 0; }))
       << "no commands from the process";
@@ -129,7 +139,7 @@ TEST(GuidanceControlProcess, FollowsRejectsAndFallsBackToSafeMode) {
   EXPECT_EQ(rig.last_status.mode, msg::GuidanceMode::GUIDANCE_FOLLOWING);
   EXPECT_EQ(rig.last_status.plan_id, 1u);
 
-  // No valid plan for plan.timeout = 3 s -> safe mode: hold heading, slow down.
+  // No valid plan for plan.max_age = 3 s -> safe mode: hold heading, slow down.
   ASSERT_TRUE(rig.pump(10, [&] { return rig.last_status.mode == msg::GuidanceMode::GUIDANCE_SAFE_MODE; }));
   EXPECT_NE(rig.last_status.detail.find("no valid plan"), std::string::npos) << rig.last_status.detail;
   EXPECT_DOUBLE_EQ(rig.last_status.desired_speed, 3.0);
@@ -137,9 +147,31 @@ TEST(GuidanceControlProcess, FollowsRejectsAndFallsBackToSafeMode) {
   // A valid plan ends safe mode; the planner's "no path" starts it again.
   rig.plan.write(path(4, {{-1000, 0}, {20000, 0}}));
   ASSERT_TRUE(rig.pump(5, [&] { return rig.last_status.mode == msg::GuidanceMode::GUIDANCE_FOLLOWING && rig.last_status.plan_id == 4; }));
+
+  // A late plan (effective_ns 1.5 s ahead) is held: plan 4 is followed until then.
+  auto late = path(6, {{-1000, 0}, {20000, 0}});
+  late.effective_ns = dds_time() + 1'500'000'000;
+  int64_t first_stamp_6 = 0, last_stamp_4 = 0;
+  rig.on_status = [&](const msg::GuidanceStatus& s) {
+    if (s.plan_id == 6 && first_stamp_6 == 0) first_stamp_6 = s.header.stamp_ns;
+    if (s.plan_id == 4) last_stamp_4 = s.header.stamp_ns;
+  };
+  rig.plan.write(late);
+  ASSERT_TRUE(rig.pump(5, [&] { return first_stamp_6 != 0; })) << "the late plan never took effect";
+  rig.on_status = nullptr;
+  EXPECT_GE(first_stamp_6, late.effective_ns);
+  EXPECT_GT(last_stamp_4, late.effective_ns - 600'000'000) << "plan 4 was not followed while plan 6 was held";
+
+  // The planner's "no path": plan 6 is kept (degraded, on health too) until plan.max_age, then safe mode.
   auto none = path(5, {}, msg::PlanStatus::PLAN_NO_PATH);
   none.reason = "goal inside land";
   rig.plan.write(none);
+  ASSERT_TRUE(rig.pump(5, [&] {
+    return rig.last_status.mode == msg::GuidanceMode::GUIDANCE_FOLLOWING &&
+           rig.last_status.detail.find("goal inside land") != std::string::npos &&
+           rig.health_state == msg::HealthState::HEALTH_DEGRADED;
+  })) << rig.last_status.detail << " / health " << static_cast<int>(rig.health_state);
+  EXPECT_EQ(rig.last_status.plan_id, 6u);
   ASSERT_TRUE(rig.pump(5, [&] { return rig.last_status.mode == msg::GuidanceMode::GUIDANCE_SAFE_MODE; }));
   EXPECT_NE(rig.last_status.detail.find("goal inside land"), std::string::npos) << rig.last_status.detail;
   EXPECT_TRUE(proc.running());

@@ -1,6 +1,7 @@
-// The supervisor: modes, plan validation with the last good plan kept, stale plan and "no path" ->
-// safe mode, and closed-loop path following on the Nomoto plant (straight leg, 90 deg turn, ILOS
-// against current, re-plan mid-leg).
+// The supervisor: modes, plan validation with the last good plan kept, "no path" and stale plans
+// (the last valid plan kept while young, then safe mode), own state lost (rudder amidships), late
+// plans held until their effective time, actuator limits, and closed-loop path following on the
+// Nomoto plant (straight leg, 90 deg turn, ILOS against current, re-plan mid-leg).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/guidance_control/guidance_control.hpp"
+#include "mpgc/ship/actuator_limits.hpp"
 #include "nomoto_plant.hpp"
 
 namespace gc = mpgc::guidance_control;
@@ -112,33 +114,97 @@ TEST(GuidanceController, BadPlansRejectedLastGoodPlanKept) {
   for (std::size_t i = 0; i < good.size(); ++i) EXPECT_EQ(c.follower().path()[i].x, good[i].x);
 }
 
-TEST(GuidanceController, NoPathPlanEntersSafeModeHoldingCourseAndSlowing) {
+// "No path" while a valid plan is young: keep following it (degraded, with the reason), then, once
+// it is plan_max_age old, hold the heading of that moment and slow to the safe speed.
+TEST(GuidanceController, NoPathKeepsTheLastValidPlanWhileFreshThenSafeMode) {
   Loop L;
+  L.params.plan_max_age = 60.0;
   gc::GuidanceController c(L.params);
-  c.on_plan(plan(1, {{0, 0}, {50000, 0}}), 0.0);
+  c.on_plan(plan(1, {{0, 0}, {50000, 0}}), 0.0);  // received at t = 0, never re-sent
   L.run(c, 20);
-  const double heading_at_entry = L.ship.psi;
   auto np = plan(2, {}, gc::PlanKind::NoPath);
   np.reason = "goal unreachable";
   ASSERT_EQ(c.on_plan(np, L.t), "");
   gc::Status last;
-  L.run(c, 900, [&](const gc::Status& s) { last = s; });
+  double entered = -1, heading_at_entry = 0;
+  bool degraded_while_following = true;
+  L.run(c, 900, [&](const gc::Status& s) {
+    if (s.mode == gc::Mode::Following) degraded_while_following = degraded_while_following && s.degraded;
+    if (s.mode == gc::Mode::SafeMode && entered < 0) entered = L.t, heading_at_entry = L.ship.psi;
+    last = s;
+  });
+  EXPECT_TRUE(degraded_while_following);
+  EXPECT_NEAR(entered, 60.5, 0.6) << "kept plan 1 until it was plan_max_age old";
   EXPECT_EQ(last.mode, gc::Mode::SafeMode);
+  EXPECT_TRUE(last.degraded);
   EXPECT_NE(last.detail.find("no path: goal unreachable"), std::string::npos) << last.detail;
+  EXPECT_NE(last.detail.find("no valid plan"), std::string::npos) << last.detail;
   EXPECT_DOUBLE_EQ(last.desired_speed, L.params.safe_speed);
-  EXPECT_NEAR(last.desired_heading, heading_at_entry, 1e-9);
-  EXPECT_NEAR(L.ship.psi, heading_at_entry, deg2rad(0.5));
+  EXPECT_NEAR(mpgc::geo::angle_diff(last.desired_heading, heading_at_entry), 0.0, deg2rad(0.6));
+  EXPECT_NEAR(mpgc::geo::angle_diff(L.ship.psi, heading_at_entry), 0.0, deg2rad(1.0));
   EXPECT_NEAR(L.ship.u, L.params.safe_speed, 0.3);
-  // The next valid plan ends safe mode.
+  // The next valid plan ends safe mode and the degraded state.
   c.on_plan(plan(3, {{L.ship.x, L.ship.y}, {L.ship.x + 10000, L.ship.y + 10000}}), L.t);
   L.run(c, 1, [&](const gc::Status& s) { last = s; });
   EXPECT_EQ(last.mode, gc::Mode::Following);
+  EXPECT_FALSE(last.degraded);
   EXPECT_EQ(last.plan_id, 3u);
+}
+
+// The last valid plan's age counts from its stamp (when it was computed), not from its receipt.
+TEST(GuidanceController, PlanAgeCountsFromItsStamp) {
+  Loop L;
+  L.params.plan_max_age = 60.0;
+  gc::GuidanceController c(L.params);
+  auto p1 = plan(1, {{0, 0}, {50000, 0}});
+  p1.stamp = -40.0;  // computed 40 s before it arrived
+  ASSERT_EQ(c.on_plan(p1, 0.0), "");
+  double entered = -1;
+  L.run(c, 40, [&](const gc::Status& s) {
+    if (s.mode == gc::Mode::SafeMode && entered < 0) entered = L.t;
+  });
+  EXPECT_NEAR(entered, 20.5, 0.6);
+}
+
+// "No path" with nothing valid to follow: safe mode at once.
+TEST(GuidanceController, NoPathWithoutAPlanEntersSafeModeAtOnce) {
+  Loop L;
+  gc::GuidanceController c(L.params);
+  L.run(c, 5);
+  const double psi0 = L.ship.psi;
+  auto bad = plan(7, {}, gc::PlanKind::InvalidInput);
+  bad.reason = "start inside land";
+  ASSERT_EQ(c.on_plan(bad, L.t), "");
+  gc::Status last;
+  L.run(c, 1, [&](const gc::Status& s) { last = s; });
+  EXPECT_EQ(last.mode, gc::Mode::SafeMode);
+  EXPECT_TRUE(last.degraded);
+  EXPECT_NE(last.detail.find("invalid input: start inside land"), std::string::npos) << last.detail;
+  EXPECT_NEAR(last.desired_heading, psi0, deg2rad(0.5));
+}
+
+// A refused plan keeps the good one but is reported (degraded) until the next valid plan.
+TEST(GuidanceController, RejectedPlanIsReportedWhileTheGoodOneIsFollowed) {
+  Loop L;
+  gc::GuidanceController c(L.params);
+  ASSERT_EQ(c.on_plan(plan(1, {{0, 0}, {50000, 0}}), 0.0), "");
+  L.run(c, 5);
+  EXPECT_NE(c.on_plan(plan(2, {{0, 0}, {kNaN, 0}}), L.t), "");
+  gc::Status last;
+  L.run(c, 1, [&](const gc::Status& s) { last = s; });
+  EXPECT_EQ(last.mode, gc::Mode::Following);
+  EXPECT_EQ(last.plan_id, 1u);
+  EXPECT_TRUE(last.degraded);
+  EXPECT_NE(last.detail.find("plan 2 rejected"), std::string::npos) << last.detail;
+  ASSERT_EQ(c.on_plan(plan(3, {{0, 0}, {50000, 0}}), L.t), "");
+  L.run(c, 1, [&](const gc::Status& s) { last = s; });
+  EXPECT_FALSE(last.degraded);
+  EXPECT_EQ(last.detail, "following plan 3");
 }
 
 TEST(GuidanceController, StalePlanEntersSafeMode) {
   Loop L;
-  L.params.plan_timeout = 30.0;
+  L.params.plan_max_age = 30.0;
   gc::GuidanceController c(L.params);
   c.on_plan(plan(1, {{0, 0}, {50000, 0}}), 0.0);
   gc::Status last;
@@ -153,7 +219,7 @@ TEST(GuidanceController, StalePlanEntersSafeMode) {
   EXPECT_DOUBLE_EQ(last.desired_speed, L.params.safe_speed);
   // Also before any plan at all.
   Loop L2;
-  L2.params.plan_timeout = 30.0;
+  L2.params.plan_max_age = 30.0;
   gc::GuidanceController c2(L2.params);
   L2.run(c2, 40, [&](const gc::Status& s) { last = s; });
   EXPECT_EQ(last.mode, gc::Mode::SafeMode);
@@ -164,7 +230,8 @@ TEST(GuidanceController, NavigationLossAndBadNavigation) {
   gc::GuidanceController c(L.params);
   auto cmd = c.step(0.0);
   EXPECT_EQ(cmd.status.mode, gc::Mode::SafeMode);
-  EXPECT_EQ(cmd.status.detail, "no navigation state");
+  EXPECT_TRUE(cmd.status.degraded);
+  EXPECT_EQ(cmd.status.detail, "no own-ship state yet");
   EXPECT_EQ(cmd.rudder, 0.0);
   gc::NavInput n{0, 0, 0, 7, 0};
   n.heading = kNaN;
@@ -177,8 +244,161 @@ TEST(GuidanceController, NavigationLossAndBadNavigation) {
   EXPECT_EQ(c.step(0.5).status.mode, gc::Mode::Idle);
   cmd = c.step(10.0);  // own state now 10 s old
   EXPECT_EQ(cmd.status.mode, gc::Mode::SafeMode);
-  EXPECT_NE(cmd.status.detail.find("old"), std::string::npos);
+  EXPECT_NE(cmd.status.detail.find("no own-ship state for more than 5.0 s"), std::string::npos) << cmd.status.detail;
   EXPECT_EQ(cmd.rudder, 0.0);
+}
+
+// Own state lost while following a plan into a turn: rudder amidships at once, rpm reduced to the
+// safe speed's (never raised), a detail that stays put during the outage; the next fresh state
+// resumes the plan.
+TEST(GuidanceController, OwnStateLostWhileTurningRudderAmidshipsThenResumes) {
+  Loop L;
+  L.params.plan_max_age = 1e4;  // the plan is not re-sent in this test
+  gc::GuidanceController c(L.params);
+  L.send(c, plan(1, {{0, 0}, {3000, 0}, {3000, 20000}}));
+  gc::Command last{};
+  const int n = static_cast<int>(500 / L.dt);
+  for (int i = 0; i < n; ++i) {  // into the turn: rudder well off amidships
+    ASSERT_EQ(c.on_nav(nav_of(L.ship), L.t), "");
+    last = c.step(L.t);
+    L.ship.step(L.dt, last.rudder, last.propeller_rpm);
+    L.t += L.dt;
+    if (std::abs(last.rudder) > deg2rad(5) && L.t > 60) break;
+  }
+  ASSERT_GT(std::abs(last.rudder), deg2rad(5)) << "the test wants the ship turning";
+  const double rpm_before = last.propeller_rpm;
+  const double t_lost = L.t;
+  std::string detail;
+  for (double t = t_lost; t < t_lost + 30.0; t += L.dt) {  // nav silent for 30 s
+    const auto cmd = c.step(t);
+    if (t - t_lost > L.params.nav_timeout + L.dt) {
+      EXPECT_EQ(cmd.status.mode, gc::Mode::SafeMode);
+      EXPECT_TRUE(cmd.status.degraded);
+      EXPECT_EQ(cmd.rudder, 0.0);
+      EXPECT_LE(cmd.propeller_rpm, rpm_before + 1e-9);
+      EXPECT_LE(cmd.propeller_rpm, c.params().speed.max_rpm);
+      if (detail.empty()) detail = cmd.status.detail;
+      EXPECT_EQ(cmd.status.detail, detail) << "the detail must not change every cycle (log and health)";
+    }
+  }
+  EXPECT_NE(detail.find("no own-ship state for more than"), std::string::npos) << detail;
+  L.t = t_lost + 30.0;
+  ASSERT_EQ(c.on_nav(nav_of(L.ship), L.t), "");
+  const auto back = c.step(L.t);
+  EXPECT_EQ(back.status.mode, gc::Mode::Following);
+  EXPECT_FALSE(back.status.degraded);
+  EXPECT_EQ(back.status.plan_id, 1u);
+}
+
+// Late plans (seed 000 section 6): a plan computed for a later time is held and replaces the one
+// followed only when the clock reaches its effective time.
+TEST(GuidanceController, LatePlanTakesEffectAtItsEffectiveTime) {
+  Loop L;
+  gc::GuidanceController c(L.params);
+  ASSERT_EQ(c.on_plan(plan(1, {{0, 0}, {50000, 0}}), 0.0), "");
+  L.run(c, 10);
+  auto p2 = plan(2, {{0, 0}, {20000, 20000}});
+  p2.effective = L.t + 3.0;
+  const double due = p2.effective;
+  ASSERT_EQ(c.on_plan(p2, L.t), "");
+  ASSERT_TRUE(c.held_plan());
+  EXPECT_EQ(c.held_plan()->first, 2u);
+  double switched = -1;
+  L.run(c, 6, [&](const gc::Status& s) {
+    if (s.plan_id == 2 && switched < 0) switched = L.t - L.dt;  // the time the step ran at
+  });
+  EXPECT_GE(switched, due);
+  EXPECT_LT(switched, due + L.dt + 1e-9);
+  EXPECT_FALSE(c.held_plan());
+
+  // A newer held plan replaces an older held one; plan 3 is never followed.
+  auto p3 = plan(3, {{0, 0}, {0, 20000}});
+  p3.effective = L.t + 2.0;
+  auto p4 = plan(4, {{0, 0}, {-20000, 20000}});
+  p4.effective = L.t + 4.0;
+  ASSERT_EQ(c.on_plan(p3, L.t), "");
+  ASSERT_EQ(c.on_plan(p4, L.t), "");
+  bool saw3 = false;
+  gc::Status last;
+  L.run(c, 6, [&](const gc::Status& s) { saw3 = saw3 || s.plan_id == 3, last = s; });
+  EXPECT_FALSE(saw3);
+  EXPECT_EQ(last.plan_id, 4u);
+
+  // effective 0 or in the past: at once; and it drops an older held plan.
+  auto p5 = plan(5, {{0, 0}, {20000, 0}});
+  p5.effective = L.t + 2.0;
+  ASSERT_EQ(c.on_plan(p5, L.t), "");
+  auto p6 = plan(6, {{0, 0}, {20000, -20000}});
+  p6.effective = L.t - 1.0;
+  ASSERT_EQ(c.on_plan(p6, L.t), "");
+  EXPECT_FALSE(c.held_plan());
+  bool saw5 = false;
+  L.run(c, 5, [&](const gc::Status& s) { saw5 = saw5 || s.plan_id == 5, last = s; });
+  EXPECT_FALSE(saw5) << "plan 5 is older than plan 6 and must not replace it";
+  EXPECT_EQ(last.plan_id, 6u);
+  auto p7 = plan(7, {{0, 0}, {20000, 0}});
+  p7.effective = 0.0;
+  ASSERT_EQ(c.on_plan(p7, L.t), "");
+  L.run(c, 0.5, [&](const gc::Status& s) { last = s; });
+  EXPECT_EQ(last.plan_id, 7u);
+
+  // Bad effective times are refused with the reason.
+  auto bad = plan(8, {{0, 0}, {20000, 0}});
+  bad.effective = kNaN;
+  EXPECT_NE(c.on_plan(bad, L.t).find("effective"), std::string::npos);
+  bad.effective = L.t + 10 * L.params.plan_max_age;
+  EXPECT_NE(c.on_plan(bad, L.t).find("takes effect in"), std::string::npos);
+  EXPECT_FALSE(c.held_plan());
+}
+
+// A held "no path" also waits for its time; the plan followed is kept until then.
+TEST(GuidanceController, LateNoPathWaitsForItsEffectiveTime) {
+  Loop L;
+  gc::GuidanceController c(L.params);
+  ASSERT_EQ(c.on_plan(plan(1, {{0, 0}, {50000, 0}}), 0.0), "");
+  L.run(c, 5);
+  auto np = plan(2, {}, gc::PlanKind::NoPath);
+  np.effective = L.t + 2.0;
+  ASSERT_EQ(c.on_plan(np, L.t), "");
+  gc::Status last;
+  L.run(c, 1, [&](const gc::Status& s) { last = s; });
+  EXPECT_FALSE(last.degraded);
+  L.run(c, 2, [&](const gc::Status& s) { last = s; });
+  EXPECT_TRUE(last.degraded);
+  EXPECT_EQ(last.mode, gc::Mode::Following);
+  EXPECT_EQ(last.plan_id, 1u);
+}
+
+// A heading error beyond what the rudder can give: the order is clipped to the ship's limit and
+// flagged, and it is never beyond the limit the ship's actuators obey (the same description).
+TEST(GuidanceController, RudderOrderSaturatesAtTheShipsLimit) {
+  Loop L;
+  L.params.heading.max_rudder_rate = 1.0;  // reach the angle limit in one step
+  gc::GuidanceController c(L.params);
+  ASSERT_EQ(c.on_plan(plan(1, {{0, 0}, {0, -50000}}), 0.0), "");  // due west, the ship heads north
+  gc::Command cmd;
+  for (double t : {0.0, 0.5, 1.0}) {  // the rate limit (1 rad/s) reaches 35 deg in the second step
+    ASSERT_EQ(c.on_nav(nav_of(L.ship), t), "");
+    cmd = c.step(t);
+  }
+  EXPECT_TRUE(cmd.rudder_saturated);
+  EXPECT_DOUBLE_EQ(cmd.rudder, -L.params.heading.max_rudder);
+  const auto o = mpgc::ship::saturate(mpgc::ship::kvlcc2_actuator_limits(), cmd.rudder, cmd.propeller_rpm);
+  EXPECT_FALSE(o.rudder_saturated) << "the ship would clip GC's hard-over order: the limits disagree";
+  EXPECT_FALSE(o.rpm_saturated);
+}
+
+TEST(GuidanceController, ActuatorLimitsAreValidatedByTheOneDescription) {
+  gc::GuidanceControlParams p;
+  EXPECT_DOUBLE_EQ(p.heading.max_rudder, mpgc::ship::kvlcc2_actuator_limits().max_rudder);
+  EXPECT_DOUBLE_EQ(p.speed.max_rpm, mpgc::ship::kvlcc2_actuator_limits().max_rpm);
+  p.heading.max_rudder_rate = 2.0;  // the autopilot alone would take it; no steering gear turns 115 deg/s
+  try {
+    gc::GuidanceController c(p);
+    FAIL() << "accepted a rudder rate of 2 rad/s";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("actuator limits.max_rudder_rate"), std::string::npos) << e.what();
+  }
 }
 
 // Closed loop on the Nomoto plant: straight leg from a 500 m offset, then a 90 deg turn.

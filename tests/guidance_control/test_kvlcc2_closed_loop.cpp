@@ -12,6 +12,7 @@
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/guidance_control/guidance_control.hpp"
+#include "mpgc/ship/actuator_limits.hpp"
 #include "mpgc/ship_simulator/mmg_model.hpp"
 
 namespace gc = mpgc::guidance_control;
@@ -250,30 +251,61 @@ TEST(Kvlcc2, NewPlanMidLegIsJoinedWithoutHeadingJump) {
   EXPECT_GT(c.follower().active_waypoint(), 1u);
 }
 
-// The planner reports "no path": the tanker holds its heading and slows to the safe speed.
+// One description of the actuator limits: guidance_control's defaults are what the simulator's
+// KVLCC2 obeys, so no order the controller thinks legal is clipped or refused by the ship; and a
+// hard-over turn's orders pass the ship's limits unclipped.
+TEST(Kvlcc2, ActuatorLimitsAgreeWithTheSimulatorsModel) {
+  const mpgc::ship::ActuatorLimits gc_lim = gc::GuidanceControlParams{}.actuator_limits();
+  const mpgc::ship::ActuatorLimits ship = sim::MmgModel(sim::kvlcc2_params()).actuator_limits();
+  EXPECT_EQ(gc_lim.max_rudder, ship.max_rudder);
+  EXPECT_EQ(gc_lim.max_rudder_rate, ship.max_rudder_rate);
+  EXPECT_EQ(gc_lim.min_rpm, ship.min_rpm);
+  EXPECT_EQ(gc_lim.max_rpm, ship.max_rpm);
+  Loop L;
+  gc::GuidanceController c(L.params);
+  L.send(c, plan(1, {{0, 0}, {3000, 0}, {3000, -20000}}));  // a 90 deg turn to port
+  int at_limit = 0, clipped_by_ship = 0;
+  L.run(c, 600, [&](const gc::Command& cmd) {
+    at_limit += cmd.rudder_saturated ? 1 : 0;
+    const auto o = mpgc::ship::saturate(ship, cmd.rudder, cmd.propeller_rpm);
+    clipped_by_ship += (o.rudder_saturated || o.rpm_saturated) ? 1 : 0;
+  });
+  std::printf("[figure] KVLCC2 90 deg turn: %d control cycles with the rudder order at the limit, %d clipped by the ship\n",
+              at_limit, clipped_by_ship);
+  EXPECT_GT(at_limit, 0) << "the turn should ask for hard over";
+  EXPECT_EQ(clipped_by_ship, 0);
+}
+
+// The planner reports "no path": the tanker keeps the last valid plan while it is young (the plan
+// came at t = 285 s), then holds the heading it has at that moment and slows to the safe speed.
 TEST(Kvlcc2, NoPathSafeModeHoldsHeadingAndSlows) {
   Loop L;
   gc::GuidanceController c(L.params);
   L.send(c, plan(1, {{0, 0}, {10000, 10000}}));
   L.run(c, 300);
-  const double psi0 = L.ship.state().psi;
   L.current.reset();  // the planner stops sending plans
   gc::PlanInput np = plan(2, {});
   np.kind = gc::PlanKind::NoPath;
   ASSERT_EQ(c.on_plan(np, L.t), "");
-  double max_dev = 0.0, late_dev = 0.0;
+  double max_dev = 0.0, late_dev = 0.0, psi0 = 0.0;
   gc::Status st;
-  double t_rel = 0.0;
+  double entered = -1.0;
   L.run(c, 2400, [&](const gc::Command& cmd) {
     st = cmd.status;
+    if (st.mode != gc::Mode::SafeMode) {
+      EXPECT_TRUE(st.mode == gc::Mode::Following && st.degraded);
+      return;
+    }
+    if (entered < 0) entered = L.t - L.dt, psi0 = st.desired_heading;
     const double dev = std::abs(mpgc::geo::angle_diff(L.ship.state().psi, psi0));
     max_dev = std::max(max_dev, dev);
-    if ((t_rel += L.dt) > 600.0) late_dev = std::max(late_dev, dev);
+    if (L.t - entered > 600.0) late_dev = std::max(late_dev, dev);
   });
-  std::printf("[figure] KVLCC2 safe mode: heading deviation %.2f deg (after 600 s %.2f deg; the ship was turning at "
-              "entry), speed after 2400 s %.2f m/s (safe %.1f)\n",
-              rad2deg(max_dev), rad2deg(late_dev), L.ship.state().u, L.params.safe_speed);
+  std::printf("[figure] KVLCC2 safe mode (entered %.0f s after the last plan): heading deviation %.2f deg (after "
+              "600 s %.2f deg; the ship was turning at entry), speed after 2400 s %.2f m/s (safe %.1f)\n",
+              entered - 285.0, rad2deg(max_dev), rad2deg(late_dev), L.ship.state().u, L.params.safe_speed);
   EXPECT_EQ(st.mode, gc::Mode::SafeMode);
+  EXPECT_NEAR(entered, 285.0 + L.params.plan_max_age, 1.0);
   EXPECT_LT(rad2deg(max_dev), 5.0);
   EXPECT_LT(rad2deg(late_dev), 1.0);  // decelerating from 7 to 3 m/s the hull's K drops
   EXPECT_NEAR(L.ship.state().u, L.params.safe_speed, 0.5);

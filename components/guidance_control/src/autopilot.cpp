@@ -41,6 +41,7 @@ double HeadingAutopilot::update(double psi_d, double psi, double r, double dt) {
   const double i_next = std::clamp(integral_ + p_.ki * e * dt, -p_.integral_limit, p_.integral_limit);
   const double u = p_.kp * e + i_next - p_.kd * r;
   double out = std::clamp(u, -p_.max_rudder, p_.max_rudder);
+  saturated_ = out != u;
   out = std::clamp(out, last_ - p_.max_rudder_rate * dt, last_ + p_.max_rudder_rate * dt);
   // Conditional integration: hold the integral when a limit holds the output back and the error
   // would push it further that way.
@@ -135,6 +136,7 @@ double SpeedController::update(double u_d, double u, double dt) {
                             : integral_;
   const double cmd = feedforward(u_d) + p_.kp * e + i_next;
   double out = std::clamp(cmd, p_.min_rpm, p_.max_rpm);
+  saturated_ = out != cmd;
   out = std::clamp(out, last_ - p_.max_rpm_rate * dt, last_ + p_.max_rpm_rate * dt);
   const bool limited = std::abs(out - cmd) > 1e-9;
   if (!limited || (cmd - out) * e < 0.0) integral_ = i_next;

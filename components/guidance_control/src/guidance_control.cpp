@@ -40,8 +40,10 @@ void GuidanceControlParams::validate() const {
   follower.validate();
   heading.validate();
   speed.validate();
+  // The rudder and rpm limits are the ship's: checked as the one description checks them.
+  actuator_limits().validate("guidance_control actuator limits");
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!pos(plan_timeout)) throw std::invalid_argument("GuidanceControlParams.plan_timeout must be finite and > 0 s");
+  if (!pos(plan_max_age)) throw std::invalid_argument("GuidanceControlParams.plan_max_age must be finite and > 0 s");
   if (!pos(nav_timeout)) throw std::invalid_argument("GuidanceControlParams.nav_timeout must be finite and > 0 s");
   if (!pos(safe_speed)) throw std::invalid_argument("GuidanceControlParams.safe_speed must be finite and > 0 m/s");
   if (!std::isfinite(arrival_speed) || arrival_speed < 0.0)
@@ -56,14 +58,28 @@ GuidanceController::GuidanceController(const GuidanceControlParams& p)
 
 std::string GuidanceController::on_plan(const PlanInput& plan, double t) {
   if (!std::isfinite(t)) return "non-finite receive time";
+  // A refused plan leaves the ship on the last valid one, but says so (degraded) until a valid one.
+  auto refuse = [&](const std::string& why) {
+    issue_ = "plan " + std::to_string(plan.plan_id) + " rejected: " + why;
+    return why;
+  };
   if (plan.kind == PlanKind::Ok || plan.kind == PlanKind::Relaxed) {
     const std::string why = check_path(plan.waypoints);
-    if (!why.empty()) return why;
+    if (!why.empty()) return refuse(why);
   }
-  if (std::isfinite(plan.stamp) && t - plan.stamp > p_.plan_timeout)
-    return "plan is " + seconds(t - plan.stamp) + " old (plan_timeout " + seconds(p_.plan_timeout) + ")";
+  if (std::isfinite(plan.stamp) && t - plan.stamp > p_.plan_max_age)
+    return refuse("plan is " + seconds(t - plan.stamp) + " old (plan_max_age " + seconds(p_.plan_max_age) + ")");
+  if (!std::isfinite(plan.effective)) return refuse("non-finite effective time");
+  if (plan.effective - t > p_.plan_max_age)
+    return refuse("takes effect in " + seconds(plan.effective - t) + ", beyond plan_max_age " + seconds(p_.plan_max_age));
+  if (plan.effective > t) {  // computed for a later time: the current plan is followed until then
+    held_ = plan;
+    held_t_ = t;
+    return {};
+  }
   pending_ = plan;
   pending_t_ = t;
+  held_.reset();  // older than this one: it must not replace it later
   return {};
 }
 
@@ -82,6 +98,37 @@ void GuidanceController::enter_safe(const std::string& why) {
   hold_set_ = false;
 }
 
+void GuidanceController::join(const PlanInput& plan, double t_recv, const NavInput& nav) {
+  if (plan.kind == PlanKind::NoPath || plan.kind == PlanKind::InvalidInput) {
+    issue_ = std::string("planner reports ") + (plan.kind == PlanKind::NoPath ? "no path" : "invalid input") +
+             (plan.reason.empty() ? "" : ": " + plan.reason);
+    switch (mode_) {
+      case Mode::Following:
+      case Mode::Arrived: break;  // the last valid plan is kept while it is young enough (step)
+      case Mode::SafeMode:
+        detail_ = issue_;  // already holding a heading: keep it
+        plan_id_ = plan.plan_id;
+        break;
+      case Mode::Idle:  // nothing valid to follow
+        plan_id_ = plan.plan_id;
+        follower_.clear();
+        have_plan_time_ = false;
+        enter_safe(issue_);
+        break;
+    }
+    return;
+  }
+  follower_.set_path(plan.waypoints, nav.x, nav.y);  // validated in on_plan
+  mode_ = Mode::Following;
+  plan_id_ = plan.plan_id;
+  detail_ = "following plan " + std::to_string(plan.plan_id) + (plan.kind == PlanKind::Relaxed ? " (COLREG relaxed)" : "");
+  // Its age counts from when it was computed (the targets' predictions it cleared), else receipt.
+  plan_t_ = std::isfinite(plan.stamp) ? std::min(plan.stamp, t_recv) : t_recv;
+  have_plan_time_ = true;
+  hold_set_ = false;
+  issue_.clear();
+}
+
 Command GuidanceController::step(double t) {
   if (!std::isfinite(t)) throw std::invalid_argument("GuidanceController::step: non-finite time");
   double dt = 0.0;
@@ -93,21 +140,38 @@ Command GuidanceController::step(double t) {
   }
   last_t_ = std::max(last_t_, t);
 
+  // A held plan takes effect; it is newer than any pending one (on_plan drops held plans older
+  // than a plan taking effect at once).
+  if (held_ && t >= held_->effective) {
+    pending_ = std::move(*held_);
+    pending_t_ = held_t_;
+    held_.reset();
+  }
+
   Command cmd;
   Status& st = cmd.status;
 
-  // No usable own state: nothing to steer by. Rudder midships, slow down; resume when it returns.
+  // No usable own state: nothing to steer by. Rudder amidships and reduce (never raise) the rpm to
+  // the feed-forward of safe_speed; resume with the next fresh state.
   if (!nav_ || t - nav_t_ > p_.nav_timeout) {
+    if (!nav_lost_) {  // worded once per outage: the detail (and so the log and health) stays put
+      nav_lost_detail_ = nav_ ? "no own-ship state for more than " + seconds(p_.nav_timeout) + " (last at t = " +
+                                    seconds(nav_t_) + ")"
+                              : "no own-ship state yet";
+    }
     nav_lost_ = true;
+    double rpm = std::clamp(speed_.feedforward(p_.safe_speed), p_.speed.min_rpm, p_.speed.max_rpm);
+    if (last_rpm_ >= 0.0) rpm = std::min(rpm, last_rpm_);
     heading_.reset(0.0);
-    speed_.reset(std::clamp(speed_.feedforward(p_.safe_speed), p_.speed.min_rpm, p_.speed.max_rpm));
+    speed_.reset(rpm);
     st.mode = Mode::SafeMode;
-    st.detail = nav_ ? "navigation state " + seconds(t - nav_t_) + " old" : "no navigation state";
+    st.degraded = true;
+    st.detail = nav_lost_detail_;
     st.plan_id = plan_id_;
     st.desired_speed = p_.safe_speed;
     cmd.rudder = 0.0;
-    cmd.propeller_rpm = speed_.feedforward(p_.safe_speed);
-    cmd.propeller_rpm = std::clamp(cmd.propeller_rpm, p_.speed.min_rpm, p_.speed.max_rpm);
+    cmd.propeller_rpm = rpm;
+    last_rpm_ = rpm;
     return cmd;
   }
   const NavInput nav = *nav_;
@@ -120,29 +184,20 @@ Command GuidanceController::step(double t) {
   if (pending_) {
     const PlanInput plan = std::move(*pending_);
     pending_.reset();
-    plan_id_ = plan.plan_id;
-    if (plan.kind == PlanKind::NoPath || plan.kind == PlanKind::InvalidInput) {
-      follower_.clear();
-      have_plan_time_ = false;
-      enter_safe(std::string("planner reports ") + (plan.kind == PlanKind::NoPath ? "no path" : "invalid input") +
-                 (plan.reason.empty() ? "" : ": " + plan.reason));
-    } else {
-      follower_.set_path(plan.waypoints, nav.x, nav.y);  // validated in on_plan
-      mode_ = Mode::Following;
-      detail_ = "following plan " + std::to_string(plan.plan_id) + (plan.kind == PlanKind::Relaxed ? " (COLREG relaxed)" : "");
-      plan_t_ = pending_t_;
-      have_plan_time_ = true;
-      hold_set_ = false;
-    }
+    join(plan, pending_t_, nav);
   }
 
-  // Stale plan: nothing valid for plan_timeout (measured from the start before the first plan).
+  // The plan followed ages out (its clearance was computed against predictions that age); before
+  // any plan, the start is the reference. Arrived is exempt: the ship is slowing at the goal.
   if (mode_ == Mode::Following || mode_ == Mode::Idle) {
     const double age = t - (have_plan_time_ ? plan_t_ : start_t_);
-    if (age > p_.plan_timeout) {
+    if (age > p_.plan_max_age) {
+      const std::string why = have_plan_time_ ? "no valid plan for " + seconds(age) + " (plan " +
+                                                    std::to_string(plan_id_) + " aged out)"
+                                              : "no valid plan for " + seconds(age);
       follower_.clear();
       have_plan_time_ = false;
-      enter_safe("no valid plan for " + seconds(age));
+      enter_safe(issue_.empty() ? why : issue_ + "; " + why);
     }
   }
 
@@ -183,8 +238,14 @@ Command GuidanceController::step(double t) {
 
   cmd.rudder = heading_.update(psi_d, nav.heading, nav.r, dt);
   cmd.propeller_rpm = speed_.update(u_d, nav.u, dt);
+  cmd.rudder_saturated = heading_.saturated();
+  cmd.rpm_saturated = speed_.saturated();
+  last_rpm_ = cmd.propeller_rpm;
   st.mode = mode_;
+  st.degraded = mode_ == Mode::SafeMode || !issue_.empty();
   st.detail = detail_;
+  if (mode_ != Mode::SafeMode && !issue_.empty())
+    st.detail += "; " + issue_ + (mode_ == Mode::Following ? ": kept until it is " + seconds(p_.plan_max_age) + " old" : "");
   st.plan_id = plan_id_;
   st.desired_heading = psi_d;
   st.desired_speed = u_d;

@@ -73,12 +73,15 @@ void check_finite(double v, const char* name) {
   if (!std::isfinite(v)) throw std::invalid_argument(std::string("MmgParams.") + name + " must be finite");
 }
 
-// Actuator and windage values the CSV does not give (assumptions, documented in README).
+// Actuator and windage values the CSV does not give (assumptions, documented in README). The
+// angle and rpm limits are the project's one description of the KVLCC2's actuators, which
+// guidance_control's defaults also come from (the rate is the CSV's delta_rate, checked equal).
 void set_actuator_defaults(MmgParams& p) {
-  p.max_rudder = geo::deg2rad(35.0);
+  const ship::ActuatorLimits lim = ship::kvlcc2_actuator_limits();
+  p.max_rudder = lim.max_rudder;  // 35 deg
   p.rudder_servo_t = 0.5;       // servo lag well below the 15 s of a 35 deg rate-limited swing
   p.rpm_time_constant = 15.0;   // slow two-stroke diesel + shaft inertia; not in the paper
-  p.max_rpm = 150.0;            // above the ~105 rpm this model needs for 15.5 kn
+  p.max_rpm = lim.max_rpm;      // 150: above the ~105 rpm this model needs for 15.5 kn
   p.area_front = 1200.0;        // B x ~20 m above water
   p.area_lateral = 4900.0;      // Lpp x ~15 m freeboard + superstructure
 }
@@ -105,6 +108,7 @@ void MmgParams::validate() const {
   check_positive(rudder_servo_t, "rudder_servo_t");
   check_positive(rpm_time_constant, "rpm_time_constant");
   check_positive(max_rpm, "max_rpm");
+  ship::ActuatorLimits{max_rudder, rudder_rate, 0.0, max_rpm}.validate("MmgParams");
   check_positive(service_speed, "service_speed");
   check_positive(rho_air, "rho_air");
   check_finite(area_front, "area_front");
@@ -203,7 +207,7 @@ MmgParams kvlcc2_params() {
   p.C_1 = 2.0; p.C_2_pos = 1.6; p.C_2_neg = 1.1;
   p.t_R = 0.387; p.a_H = 0.312; p.x_H = -0.464; p.x_R = -0.500; p.epsilon = 1.09; p.kappa = 0.50;
   p.l_R = -0.710; p.gamma_R_neg = 0.395; p.gamma_R_pos = 0.640; p.f_alpha = 2.747;
-  p.service_speed = 7.97; p.service_rpm = 1.53 * 60.0; p.rudder_rate = geo::deg2rad(2.32);
+  p.service_speed = 7.97; p.service_rpm = 1.53 * 60.0; p.rudder_rate = ship::kvlcc2_actuator_limits().max_rudder_rate;
   set_actuator_defaults(p);
   p.validate();
   return p;

@@ -31,6 +31,7 @@ void NomotoParams::validate() const {
   positive(rudder_servo_t, "rudder_servo_t");
   positive(rpm_time_constant, "rpm_time_constant");
   positive(max_rpm, "max_rpm");
+  ship::ActuatorLimits{max_rudder, rudder_rate, 0.0, max_rpm}.validate("NomotoParams");
 }
 
 NomotoParams load_nomoto_csv(const std::string& path, const std::string& ship, double speed) {

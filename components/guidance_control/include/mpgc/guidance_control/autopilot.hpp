@@ -6,17 +6,20 @@
 #include <string>
 #include <vector>
 
+#include "mpgc/ship/actuator_limits.hpp"
+
 namespace mpgc::guidance_control {
 
 // Defaults: KVLCC2 (simulator's MMG model) at 7 m/s, Nomoto fit K = 0.033 1/s, T = 75 s, pole
 // placement with omega_n = 0.04 rad/s, zeta = 1, integral_ratio 20 (README.md "Tuning"; test
-// Kvlcc2.NomotoFitAndDefaultGainsFromIt checks the defaults still match the model).
+// Kvlcc2.NomotoFitAndDefaultGainsFromIt checks the defaults still match the model). The rudder
+// limits are the ship's (mpgc/ship/actuator_limits.hpp, the same the simulator's KVLCC2 obeys).
 struct HeadingAutopilotParams {
   double kp = 3.7;                 // [rad/rad] rudder per heading error
   double ki = 0.0075;              // [1/s] rudder per integrated heading error
   double kd = 150.0;               // [s] rudder per yaw rate (derivative on the measurement)
-  double max_rudder = 0.6109;      // [rad] rudder angle limit (35 deg)
-  double max_rudder_rate = 0.0401; // [rad/s] rudder rate limit (2.3 deg/s, KVLCC2 steering gear)
+  double max_rudder = ship::kvlcc2_actuator_limits().max_rudder;            // [rad] 35 deg
+  double max_rudder_rate = ship::kvlcc2_actuator_limits().max_rudder_rate;  // [rad/s] 2.32 deg/s
   double integral_limit = 0.1745;  // [rad] bound of the integral's rudder contribution (10 deg)
   void validate() const;           // throws std::invalid_argument naming the bad field
 };
@@ -32,12 +35,15 @@ class HeadingAutopilot {
   // One step: desired heading, measured heading [rad], measured yaw rate [rad/s], dt [s] -> rudder [rad].
   double update(double psi_d, double psi, double r, double dt);
   double integral() const { return integral_; }  // [rad]
+  // The last update asked for more rudder than max_rudder (clipped to it).
+  bool saturated() const { return saturated_; }
   const HeadingAutopilotParams& params() const { return p_; }
 
  private:
   HeadingAutopilotParams p_;
   double integral_ = 0.0;
   double last_ = 0.0;
+  bool saturated_ = false;
 };
 
 // Defaults: the simulator's KVLCC2 MMG model, whose self-propulsion rpm is 13.17 rpm per m/s
@@ -51,8 +57,8 @@ struct SpeedControllerParams {
   double integral_limit = 20.0;             // [1/min] bound of the integral's contribution
   double integral_zone = 0.3;               // [m/s] integrate only while |speed error| < this: a tanker's
                                             // slow speed change would otherwise wind the integral up
-  double min_rpm = 0.0;                     // [1/min] lowest command (0: no astern from this loop)
-  double max_rpm = 130.0;                   // [1/min] highest command
+  double min_rpm = ship::kvlcc2_actuator_limits().min_rpm;  // [1/min] lowest command (0: ahead only)
+  double max_rpm = ship::kvlcc2_actuator_limits().max_rpm;  // [1/min] highest command (the engine's 150)
   double max_rpm_rate = 2.0;                // [1/min/s] slew limit of the command
   void validate() const;                    // throws std::invalid_argument naming the bad field
 };
@@ -71,12 +77,15 @@ class SpeedController {
   // One step: desired speed, measured surge speed [m/s], dt [s] -> propeller rpm [1/min].
   double update(double u_d, double u, double dt);
   double integral() const { return integral_; }  // [1/min]
+  // The last update asked for an rpm outside [min_rpm, max_rpm] (clipped to it).
+  bool saturated() const { return saturated_; }
   const SpeedControllerParams& params() const { return p_; }
 
  private:
   SpeedControllerParams p_;
   double integral_ = 0.0;
   double last_ = 0.0;
+  bool saturated_ = false;
 };
 
 // First-order Nomoto model T r' + r = K delta.

@@ -76,8 +76,7 @@ class MmgModel final : public RK4ShipModel {
   std::array<double, ShipState::kSize> derivative(const ShipState& s, const ShipCommand& cmd) const override;
   double length() const override { return p_.L; }
   double beam() const override { return p_.B; }
-  double max_rudder() const override { return p_.max_rudder; }
-  double max_rpm() const override { return p_.max_rpm; }
+  ship::ActuatorLimits actuator_limits() const override { return {p_.max_rudder, p_.rudder_rate, 0.0, p_.max_rpm}; }
   const MmgParams& params() const { return p_; }
 
   // Forces in midship axes for a state (for tests and the self-propulsion search).

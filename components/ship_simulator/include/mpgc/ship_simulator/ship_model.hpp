@@ -6,6 +6,8 @@
 #include <array>
 #include <string>
 
+#include "mpgc/ship/actuator_limits.hpp"
+
 namespace mpgc::ship_simulator {
 
 // State of a 3DOF ship (design.md conventions: NED, heading clockwise from north).
@@ -49,13 +51,16 @@ class ShipModel {
   virtual const ShipState& state() const = 0;
   virtual void set_state(const ShipState& s) = 0;
   // Advances the model by dt [s] with the command held constant over the step. The command is
-  // saturated to the actuator limits here (the caller validates ranges before).
+  // saturated to the actuator limits here (the caller refuses non-finite orders before).
   virtual void step(double dt, const ShipCommand& cmd) = 0;
   virtual void set_environment(const Environment& env) = 0;
   virtual double length() const = 0;       // [m] length between perpendiculars
   virtual double beam() const = 0;         // [m]
-  virtual double max_rudder() const = 0;   // [rad] rudder angle limit
-  virtual double max_rpm() const = 0;      // [1/min] largest propeller speed accepted
+  // The steering gear and engine limits of this hull (mpgc/ship/actuator_limits.hpp): what the
+  // actuators obey, and what guidance_control's defaults must equal for the default ship.
+  virtual ship::ActuatorLimits actuator_limits() const = 0;
+  double max_rudder() const { return actuator_limits().max_rudder; }  // [rad] rudder angle limit
+  double max_rpm() const { return actuator_limits().max_rpm; }        // [1/min] largest propeller speed
 };
 
 // A model given by a state derivative f(state, command), integrated by classical RK4 with the
