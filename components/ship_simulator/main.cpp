@@ -41,7 +41,11 @@ struct Params {
   std::string hil_host;
   int gnss_port = 0, ais_port = 0, gyro_port = 0, feedback_port = 0, orders_port = 0;
   double gnss_period = 0.2;     // [s] simulated
-  double order_timeout = 2.0;   // [s] simulated: the actuator watchdog
+  double order_timeout = 2.0;   // [s] simulated: the actuator watchdog in HIL
+  // Actuator watchdog on control/actuators (README "Actuator watchdog").
+  double watchdog_timeout = 2.0;   // [s] simulated time without an order before it trips
+  std::string watchdog_engine;     // reduce | hold
+  double steerage_speed = 3.0;     // [m/s] "reduce": engine to the rpm of this straight speed
   bool hil_radar = false;       // keep publishing sensors/radar in HIL (a radar with its own DDS link)
 
   void declare(rt::ParamSet& ps) {
@@ -66,7 +70,15 @@ struct Params {
     ps.add("hil.radar", &hil_radar, false, "in HIL, still publish sensors/radar (a radar with its own DDS link)");
     ps.add("hil.gnss_period", &gnss_period, 0.2, "s", 0.05, 10.0, "GNSS output interval (simulated time)");
     ps.add("hil.order_timeout", &order_timeout, 2.0, "s", 0.1, 60.0,
-           "actuator watchdog: no order this long puts the rudder amidships (engine order held)");
+           "actuator watchdog in HIL: no rudder order this long puts the rudder amidships, the engine to watchdog.engine");
+    ps.add("watchdog.timeout", &watchdog_timeout, 2.0, "s", 0.1, 60.0,
+           "actuator watchdog: no valid control/actuators sample for this long (simulated) puts the rudder "
+           "amidships and the engine to watchdog.engine; the next order ends it (4 control periods at 2 Hz)");
+    ps.add("watchdog.engine", &watchdog_engine, "reduce",
+           "engine order while the watchdog has tripped: reduce (to the rpm of watchdog.steerage_speed, never "
+           "above the last order) | hold (the last order, as class rules want for a manned ship)", {"reduce", "hold"});
+    ps.add("watchdog.steerage_speed", &steerage_speed, 3.0, "m/s", 0.0, 30.0,
+           "watchdog.engine=reduce: straight speed whose rpm the engine is reduced to (KVLCC2: steerage at ~6 kn)");
   }
 };
 
@@ -75,13 +87,11 @@ msg::ShipTruth to_msg(const sim::TruthShip& t) {
 }
 
 // Why an actuator command is unusable, or "" (design.md: reject, count, keep the last valid one).
-std::string check_command(const msg::ActuatorCommand& c, const sim::ShipModel& m) {
+// Only a non-finite order is refused: one beyond a limit is saturated (the gear stops at its limit)
+// and counted where it is taken.
+std::string check_command(const msg::ActuatorCommand& c) {
   if (!std::isfinite(c.rudder)) return "rudder is not finite";
   if (!std::isfinite(c.propeller_rpm)) return "propeller_rpm is not finite";
-  if (std::abs(c.rudder) > m.max_rudder() + 1e-9)
-    return "rudder " + std::to_string(c.rudder) + " rad is beyond the limit " + std::to_string(m.max_rudder());
-  if (c.propeller_rpm < 0.0 || c.propeller_rpm > m.max_rpm())
-    return "propeller_rpm " + std::to_string(c.propeller_rpm) + " is outside [0, " + std::to_string(m.max_rpm()) + "]";
   return "";
 }
 
@@ -132,9 +142,9 @@ int main(int argc, char** argv) {
       std::unique_ptr<sim::Devices> dev;
       std::unique_ptr<mpgc::net::UdpSender> gnss, ais, gyro, feedback;
       std::unique_ptr<mpgc::net::UdpReceiver> orders;
-      sim::DeviceOrders last;
+      sim::DeviceOrders last;  // the latest orders, from the wire (HIL) or control/actuators
       int64_t next_gnss_ns = 0, next_own_ais_ns = 0;
-      bool watchdog = false;
+      bool watchdog = false;   // the actuator watchdog has tripped
       std::map<std::string, uint64_t> seen;
     };
     auto hil = std::make_shared<Hil>();
@@ -149,20 +159,38 @@ int main(int argc, char** argv) {
       c.log().info("hardware in the loop: GNSS -> {}:{}, AIS -> :{}, gyro -> :{}, feedback -> :{}, orders <- :{}",
                    p.hil_host, p.gnss_port, p.ais_port, p.gyro_port, p.feedback_port, p.orders_port);
     }
-    // Orders from the wire, and the steering gear's watchdog: without orders the rudder goes amidships.
-    auto take_orders = [&, st, world, hil] {
+    // The actuator watchdog of the steering gear and engine control (README "Actuator watchdog"):
+    // without orders the rudder goes amidships and the engine to the safe order; the next order
+    // ends it. Orders come from the wire (HIL) or control/actuators (the subscription below).
+    sim::WatchdogParams wd;
+    wd.timeout_s = p.hil ? p.order_timeout : p.watchdog_timeout;
+    if (p.watchdog_engine == "reduce")
+      wd.safe_rpm = p.steerage_speed > 0.0
+                        ? std::clamp(sim::straight_rpm(world->own(), p.steerage_speed), 0.0, world->own().max_rpm())
+                        : 0.0;
+    wd.validate();
+    const std::string engine_safe = std::isnan(wd.safe_rpm) ? std::string("engine order held")
+                                                            : fmt::format("engine to at most {:.1f} rpm", wd.safe_rpm);
+    c.log().info("actuator watchdog: after {} s without an order, rudder amidships, {}", wd.timeout_s, engine_safe);
+    auto take_orders = [&, st, world, hil, wd, engine_safe] {
       const int64_t t = world->time_ns();
-      hil->dev->on_order_lines(hil->orders->receive_lines(), t, world->own().max_rudder(), world->own().max_rpm(), &hil->last);
-      for (const auto& [k, v] : hil->dev->counters())
-        if (v > hil->seen[k]) c.count("hil." + k, v - hil->seen[k]), hil->seen[k] = v;
-      const bool tripped = sim::follow_orders(hil->last, t, p.order_timeout, &st->cmd);
-      if (tripped != hil->watchdog) {
-        hil->watchdog = tripped;
-        if (tripped) c.log().warn("actuator watchdog: no order for {} s, rudder amidships", p.order_timeout);
-        else c.log().info("actuator watchdog: orders again");
-        c.set_health(tripped ? msg::HealthState::HEALTH_DEGRADED : msg::HealthState::HEALTH_OK,
-                     tripped ? "actuator watchdog: no orders, rudder amidships" : "");
-        if (tripped) c.count("hil.watchdog_trips");
+      if (p.hil) {
+        hil->dev->on_order_lines(hil->orders->receive_lines(), t, world->own().max_rudder(), world->own().max_rpm(), &hil->last);
+        for (const auto& [k, v] : hil->dev->counters())
+          if (v > hil->seen[k]) c.count("hil." + k, v - hil->seen[k]), hil->seen[k] = v;
+      }
+      const bool tripped = sim::follow_orders(hil->last, t, wd, &st->cmd);
+      if (tripped == hil->watchdog) return;
+      hil->watchdog = tripped;
+      const double silent = static_cast<double>(t - hil->last.rudder_ns) * 1e-9;
+      if (tripped) {
+        const std::string what = fmt::format("actuator watchdog: no order for {:.1f} s, rudder amidships, {}", silent, engine_safe);
+        c.log().warn("{}", what);
+        c.count("watchdog_trips");
+        c.set_health(msg::HealthState::HEALTH_DEGRADED, what);
+      } else {
+        c.log().info("actuator watchdog: orders again, the actuators follow them");
+        c.set_health(msg::HealthState::HEALTH_OK, "");
       }
     };
     auto hil_outputs = [&, world, hil](const sim::SensorOutputs& out) {
@@ -240,7 +268,7 @@ int main(int argc, char** argv) {
         c.stop(0);
         return;
       }
-      if (p.hil) take_orders();
+      take_orders();  // the latest orders through the actuator watchdog
       world->step(st->cmd);
       c.count("steps");
       publish_step();
@@ -248,8 +276,14 @@ int main(int argc, char** argv) {
 
     if (!p.hil) c.subscribe<msg::ActuatorCommand>(
         topics::kActuators, dds::QosProfile::command(16),
-        [st, world](const msg::ActuatorCommand& a) { st->cmd = {a.rudder, a.propeller_rpm}; },
-        [world](const msg::ActuatorCommand& a) { return check_command(a, world->own()); });
+        [&c, world, hil](const msg::ActuatorCommand& a) {
+          // Beyond a limit: saturated (the gear stops there) and counted, not refused.
+          const auto o = mpgc::ship::saturate(world->own().actuator_limits(), a.rudder, a.propeller_rpm);
+          if (o.rudder_saturated) c.count("saturated.rudder");
+          if (o.rpm_saturated) c.count("saturated.rpm");
+          hil->last = {o.rudder, o.rpm, true, true, world->time_ns()};  // applied at the next step
+        },
+        [](const msg::ActuatorCommand& a) { return check_command(a); });
 
     if (!lockstep) {
       c.every(p.step * wall_per_sim, advance);

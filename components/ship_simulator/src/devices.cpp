@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/nmea/ais.hpp"
@@ -94,12 +95,26 @@ std::vector<std::string> Devices::ais_own(uint32_t own_mmsi, const NavMeasuremen
   return ais::sentences(ais::encode(r), 'A', 0, true);
 }
 
-bool follow_orders(const DeviceOrders& o, int64_t t_ns, double timeout_s, ShipCommand* cmd) {
+void WatchdogParams::validate() const {
+  if (!std::isfinite(timeout_s) || timeout_s <= 0.0)
+    throw std::invalid_argument("WatchdogParams.timeout_s must be finite and > 0 s");
+  if (std::isinf(safe_rpm) || safe_rpm < 0.0)
+    throw std::invalid_argument("WatchdogParams.safe_rpm must be NaN (hold) or finite and >= 0 rpm");
+}
+
+bool follow_orders(const DeviceOrders& o, int64_t t_ns, const WatchdogParams& w, ShipCommand* cmd) {
   if (o.rpm_seen) cmd->rpm = o.rpm;
   if (!o.rudder_seen) return false;
-  const bool tripped = static_cast<double>(t_ns - o.rudder_ns) * 1e-9 > timeout_s;
+  const bool tripped = static_cast<double>(t_ns - o.rudder_ns) * 1e-9 > w.timeout_s;
   cmd->rudder = tripped ? 0.0 : o.rudder;
+  if (tripped && !std::isnan(w.safe_rpm)) cmd->rpm = std::min(cmd->rpm, w.safe_rpm);
   return tripped;
+}
+
+bool follow_orders(const DeviceOrders& o, int64_t t_ns, double timeout_s, ShipCommand* cmd) {
+  WatchdogParams w;
+  w.timeout_s = timeout_s;
+  return follow_orders(o, t_ns, w, cmd);
 }
 
 void Devices::on_order_lines(const std::vector<std::string>& lines, int64_t t_ns, double max_rudder, double max_rpm,

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,10 +24,23 @@ struct DeviceOrders {
   int64_t rudder_ns = 0;  // [ns] when the latest rudder order came
 };
 
-// The steering gear's watchdog, as real steering gear has one: the command the actuators follow
-// at t_ns. Before any order, `cmd` is left as it is; without a rudder order for timeout_s the
-// rudder goes amidships while the engine order is held (a telegraph keeps its setting). Returns
-// true while the watchdog has tripped.
+// The actuator watchdog of the steering gear and the engine control, as real ones have: what they
+// do when the orders stop (the autopilot link is cut, guidance_control died or hangs).
+struct WatchdogParams {
+  double timeout_s = 2.0;  // [s] simulated time without a rudder order before it trips
+  // [1/min] engine order while tripped, never above the last order (reduce, not speed up); NaN:
+  // hold the last order. Default for the simulator: the rpm of steerage speed (README "Actuator
+  // watchdog": nobody steers, so run slower, but keep the rudder effective for when orders return).
+  double safe_rpm = std::numeric_limits<double>::quiet_NaN();
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+// The command the actuators follow at t_ns. Before any rudder order `cmd` is left as it is apart
+// from an rpm order (nothing to watch yet: the ship's initial setting); without a rudder order
+// for w.timeout_s the rudder goes amidships and the engine to min(order, w.safe_rpm) (or holds).
+// Returns true while the watchdog has tripped; the next order ends it.
+bool follow_orders(const DeviceOrders& o, int64_t t_ns, const WatchdogParams& w, ShipCommand* cmd);
+// The same with the engine order held (a telegraph keeps its setting).
 bool follow_orders(const DeviceOrders& o, int64_t t_ns, double timeout_s, ShipCommand* cmd);
 
 class Devices {
