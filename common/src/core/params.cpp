@@ -35,7 +35,11 @@ void flatten(const YAML::Node& n, const std::string& prefix, const std::string& 
              std::vector<std::pair<std::string, std::string>>* out) {
   if (n.IsMap()) {
     for (const auto& kv : n) {
-      const std::string key = kv.first.as<std::string>();
+      // A key that is a sequence or a mapping ("[]: 1", "? {a: 1}") names no parameter.
+      if (!kv.first.IsScalar())
+        throw ParamError(origin + ": line " + std::to_string(kv.first.Mark().line + 1) + ": a parameter name must be a scalar" +
+                         (prefix.empty() ? "" : " (under '" + prefix + "')"));
+      const std::string key = kv.first.Scalar();
       flatten(kv.second, prefix.empty() ? key : prefix + "." + key, origin, out);
     }
   } else if (n.IsScalar()) {
