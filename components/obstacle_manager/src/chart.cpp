@@ -63,6 +63,22 @@ bool simple_ring(const std::vector<PointNE>& r) {
   return true;
 }
 
+// The number of points densify_line makes of `line`, in double: finite for any finite input, so
+// it can be checked against max_points before anything is allocated (a 4e9 m line at 20 m is 2e8
+// points; an infinite length would be an undefined cast to size_t).
+double densified_points(const std::vector<PointNE>& line, double spacing) {
+  double n = line.empty() ? 0.0 : 1.0;
+  for (size_t i = 0; i + 1 < line.size(); ++i)
+    n += std::max(1.0, std::ceil(std::hypot(line[i + 1].x - line[i].x, line[i + 1].y - line[i].y) / spacing));
+  return n;
+}
+
+void check_room(size_t have, double more, size_t max_points, const std::string& name) {
+  if (!(static_cast<double>(have) + more <= static_cast<double>(max_points)))
+    throw ChartError(name + ": the chart densifies to more than max_points = " + std::to_string(max_points) +
+                     " points (raise spacing)");
+}
+
 }  // namespace
 
 void ChartParams::validate() const {
@@ -128,6 +144,11 @@ void ChartBuilder::check_size(const std::string& name) const {
 }
 
 void ChartBuilder::add_ring(std::vector<PointNE> ring, uint32_t id) {
+  if (!ring.empty()) {
+    std::vector<PointNE> closed = ring;
+    closed.push_back(ring.front());
+    check_room(set_.points.size(), densified_points(closed, p_.spacing) - 1.0, p_.max_points, set_.features[id]);
+  }
   auto pts = densify_ring(ring, p_.spacing);
   set_.points.insert(set_.points.end(), pts.begin(), pts.end());
   set_.polygons.push_back({id, std::move(ring)});
@@ -147,6 +168,7 @@ void ChartBuilder::add_circle(PointNE c, double radius, const std::string& name)
   if (!std::isfinite(c.x) || !std::isfinite(c.y) || !(radius > 0.0) || !std::isfinite(radius))
     throw ChartError(name + ": circle needs a finite centre and a radius > 0 (got " + std::to_string(radius) + " m)");
   // Circumscribed regular polygon: vertices at r / cos(pi / n) so the whole circle is inside.
+  check_room(set_.points.size(), std::ceil(2.0 * M_PI * radius / p_.spacing), p_.max_points, name);
   const int n = std::max(8, static_cast<int>(std::ceil(2.0 * M_PI * radius / p_.spacing)));
   const double rv = radius / std::cos(M_PI / n);
   std::vector<PointNE> ring;
@@ -163,6 +185,7 @@ void ChartBuilder::add_line(const std::vector<PointNE>& line, const std::string&
   if (line.size() < 2) throw ChartError(name + ": line has " + std::to_string(line.size()) + " points, needs >= 2");
   for (const auto& v : line)
     if (!std::isfinite(v.x) || !std::isfinite(v.y)) throw ChartError(name + ": line vertex is not finite");
+  check_room(set_.points.size(), densified_points(line, p_.spacing), p_.max_points, name);
   auto pts = densify_line(line, p_.spacing);
   set_.points.insert(set_.points.end(), pts.begin(), pts.end());
   // There and back: a -> ... -> z -> ... -> (a): every edge twice, so even-odd never says inside.
@@ -223,6 +246,7 @@ struct OgrReader {
   void line(const OGRLineString& l, uint32_t id, const std::string& name) {
     if (l.getNumPoints() < 2) throw ChartError(name + ": line has " + std::to_string(l.getNumPoints()) + " points, needs >= 2");
     auto v = line_points(l, name);
+    check_room(b.set_.points.size(), densified_points(v, b.p_.spacing), b.p_.max_points, name);
     auto pts = densify_line(v, b.p_.spacing);
     b.set_.points.insert(b.set_.points.end(), pts.begin(), pts.end());
     std::vector<PointNE> ring = v;
