@@ -15,6 +15,7 @@
 #include "mpgc/obstacle_manager/msg_convert.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/encounters.hpp"
+#include "mpgc/opp/memory.hpp"
 #include "mpgc/opp/planner.hpp"
 #include "mpgc/opp/replan.hpp"
 #include "mpgc/runtime/component.hpp"
@@ -40,6 +41,8 @@ struct NodeParams {
   double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
   double encounter_tcpa = 0;     // [s] risk of collision within this TCPA pins an encounter (0: the
                                  //     plan's horizon, the straight-line time to the goal)
+  std::string memory_file;       // what a restart must remember (memory.hpp); "" = nothing kept
+  double latency_per_iteration = 0;  // [s] simulated time one iteration takes (late plans); 0 = at once
 };
 
 void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
@@ -83,6 +86,13 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
          "risk of collision: CPA inside this many d_safety (about the NTNU evaluator's r_pref / r_min_cpa, 1.9)");
   ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 0.0, "s", 0.0, 86400.0,
          "a risk of collision within this time pins the encounter (0: the straight-line time to the goal)");
+  ps.add("memory.file", &p.memory_file, "",
+         "file that keeps the goal, plan id, warm-start path and pinned COLREG obligations across a restart "
+         "(read at start, rewritten after every plan; \"\" = start blind)");
+  ps.add("plan.latency_per_iteration", &p.latency_per_iteration, 0.0, "s", 0.0, 1.0,
+         "on simulated time, a plan takes effect iterations x this after the state it was planned from (guidance "
+         "follows the previous plan meanwhile, seed 000 §6); 25e-6 is the paper's 0.5 s for 20000 iterations; "
+         "0 = at once");
   ps.add("plan.port_tolerance", &q.colreg.port_tolerance, mpgc::geo::deg2rad(5.0), "rad", 0.0, 1.5,
          "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
 }
@@ -177,6 +187,22 @@ int main(int argc, char** argv) {
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
     auto* enc_out = &c->publisher<msg::EncounterList>(mpgc::topics::kPlanEncounters, mpgc::dds::QosProfile::latched());
+    auto* memory_out = &c->publisher<msg::PlannerMemory>(mpgc::topics::kPlanMemory, mpgc::dds::QosProfile::latched());
+    if (!p.memory_file.empty()) {
+      try {
+        if (const auto m = opp::load_memory(p.memory_file)) {
+          st->encounters.restore(m->pinned);
+          st->plan_id = m->plan_id;
+          st->warm_goal = m->warm_goal;
+          st->last_path = m->last_path;
+          c->log().warn("restarted: memory of plan {} (goal {}) with {} pinned encounters restored from {}", m->plan_id,
+                        m->goal_id, m->pinned.size(), p.memory_file);
+          c->count("restored");
+        }
+      } catch (const std::exception& e) {
+        c->reject("memory.file", e.what());  // start blind rather than from a memory that is not ours
+      }
+    }
 
     c->subscribe<msg::NavState>(mpgc::topics::kOwnState, mpgc::dds::QosProfile::state(),
                                 [st](const msg::NavState& s) { st->own = s; }, check_nav);
@@ -195,7 +221,7 @@ int main(int argc, char** argv) {
           }
         });
 
-    c->every(p.check_period, [c, st, &p, path_out, enc_out] {
+    c->every(p.check_period, [c, st, &p, path_out, enc_out, memory_out] {
       if (!st->own || !st->goal) return;
       const int64_t now_ns = c->now_ns();
       const double now = static_cast<double>(now_ns) * 1e-9;
@@ -286,6 +312,10 @@ int main(int argc, char** argv) {
       out.iterations = static_cast<uint32_t>(r.stats.iterations);
       out.planning_time = r.stats.planning_time;
       out.planner = "rrtstar-colreg";
+      // A plan computed on simulated time takes as long as its iterations would (deterministic);
+      // on the wall clock its lateness is real and it applies on arrival.
+      if (c->clock().simulated() && p.latency_per_iteration > 0)
+        out.effective_ns = now_ns + static_cast<int64_t>(std::llround(r.stats.iterations * p.latency_per_iteration * 1e9));
       path_out->write(out);
       if (!r.path.empty()) {
         st->last_path.clear();
@@ -321,6 +351,23 @@ int main(int argc, char** argv) {
         }
       }
       enc_out->write(enc);
+
+      // What a restart must know (memory.hpp), on the bus for observers and in the memory file.
+      opp::PlannerMemory mem{goal.goal_id, st->plan_id, st->warm_goal, st->last_path, st->encounters.records()};
+      msg::PlannerMemory mm;
+      mm.header = out.header;
+      mm.goal_id = mem.goal_id;
+      mm.plan_id = mem.plan_id;
+      for (const auto& r : mem.pinned)
+        mm.pinned.push_back({r.id, static_cast<uint32_t>(r.e.obligation), r.e.course0, r.e.track_side, r.e.target_course, r.range0});
+      memory_out->write(mm);
+      if (!p.memory_file.empty()) {
+        try {
+          opp::save_memory(p.memory_file, mem);
+        } catch (const std::exception& e) {
+          c->reject("memory.file", e.what());
+        }
+      }
     });
   });
 }

@@ -20,6 +20,7 @@
 #include <mutex>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <tuple>
 #include <thread>
 
@@ -67,6 +68,7 @@ struct Options {
   int domain = -1;               // -1: a free one in 201..230
   bool containers = false;       // with hosts: each host a podman container (deploy/container)
   std::string image = "localhost/mpgc:bookworm";
+  double plan_latency = 0.0;     // [s] per planner iteration: plans take effect late (opp plan.latency_per_iteration)
 };
 
 std::string mpgc_source_dir() {
@@ -178,6 +180,9 @@ std::string launch_file(const sr::Scenario& s, const std::string& world_path, co
   if (o.realtime_factor > 0) {
     sim["time.mode"] = "factor";
     sim["time.factor"] = std::to_string(o.realtime_factor);
+    // The actuator watchdog runs on simulated time but the orders' jitter is the wall clock's:
+    // at 20x, 0.1 s of wall time is 2 s simulated. Give it 0.2 s of wall time at least.
+    sim["watchdog.timeout"] = std::to_string(std::max(2.0, 0.2 * o.realtime_factor));
   } else {
     sim["time.mode"] = "lockstep";
     std::string participants = "scenario_runner";
@@ -197,9 +202,20 @@ std::string launch_file(const sr::Scenario& s, const std::string& world_path, co
   std::string files;
   for (const auto& f : s.chart_files) files += (files.empty() ? "" : ",") + f;
   if (!files.empty()) om["chart.files"] = files;
-  // Planning in lockstep is deterministic only when the iteration budget, not wall time, ends it.
+  // Planning in lockstep is deterministic only when the iteration budget, not wall time, ends it;
+  // at a real-time factor the planner keeps its own wall-clock budget.
   set["opp"]["plan.safety_distance"] = std::to_string(s.safety_distance);
-  set["opp"]["plan.time_budget"] = "30";
+  if (o.realtime_factor <= 0) set["opp"]["plan.time_budget"] = "30";
+  if (o.plan_latency > 0) set["opp"]["plan.latency_per_iteration"] = std::to_string(o.plan_latency);
+  // What a restarted component resumes from (issue 15): the simulator's step journal, opp's memory.
+  const fs::path run_dir = fs::path(world_path).parent_path();
+  sim["resume.journal"] = (run_dir / "sim_journal.bin").string();
+  set["opp"]["memory.file"] = (run_dir / "opp_memory.yaml").string();
+  // A participant that is alive but silent (deadlocked) is dropped after this; above opp's budget.
+  if (o.realtime_factor <= 0) sim["lockstep.hang_timeout"] = "45";
+  if (!s.faults.empty())
+    for (const char* c : {"ship_simulator", "situational_awareness", "obstacle_manager", "opp", "guidance_control"})
+      set[c]["faults.accept"] = "true";
   for (const auto& [comp, kv] : s.params)
     for (const auto& [k, v] : kv) set[comp][k] = v;
 
@@ -231,6 +247,9 @@ std::string launch_file(const sr::Scenario& s, const std::string& world_path, co
       if (in_ns) f << "    host: " << where.lab->ns(h->name) << "\n";
       f << "    env: {CYCLONEDDS_URI: " << yaml_str("file://" + where.network_dir + "/" + h->name + "/cyclonedds.xml") << "}\n";
     }
+    // A component that dies is restarted and recovers from its journal or memory file and the
+    // latched topics (issue 15); a clean exit (code 0) is the end of the run.
+    f << "    restart: on-failure\n    max_restarts: 20\n    restart_delay: 0.2\n";
     f << "    set:\n";
     for (const auto& [k, v] : set[c]) f << "      " << k << ": " << yaml_str(v) << "\n";
   };
@@ -301,6 +320,42 @@ int stop_launcher(pid_t pid) {
 
 sr::ShipState state_of(const msg::ShipTruth& t) { return {t.x, t.y, t.heading, t.cog, t.sog}; }
 
+// The process of `component` among the launcher's children (its argv[0] is mpgc_<component>), or -1.
+pid_t component_pid(pid_t launcher, const std::string& component) {
+  const std::string exe = "mpgc_" + component;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator("/proc", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream st(e.path() / "stat");
+    std::string line;
+    std::getline(st, line);
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 2));
+    char state = 0;
+    pid_t ppid = 0;
+    rest >> state >> ppid;
+    if (ppid != launcher) continue;
+    std::ifstream cl(e.path() / "cmdline");
+    std::string argv0;
+    std::getline(cl, argv0, '\0');
+    if (fs::path(argv0).filename() == exe) return static_cast<pid_t>(std::stoi(name));
+  }
+  return -1;
+}
+
+const char* health_name(msg::HealthState h) {
+  switch (h) {
+    case msg::HealthState::HEALTH_STARTING: return "starting";
+    case msg::HealthState::HEALTH_OK: return "ok";
+    case msg::HealthState::HEALTH_DEGRADED: return "degraded";
+    case msg::HealthState::HEALTH_ERROR: return "error";
+    case msg::HealthState::HEALTH_STOPPING: return "stopping";
+  }
+  return "?";
+}
+
 struct Outcome {
   bool ran = false;
   sr::Metrics metrics;
@@ -337,6 +392,8 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     e << world;
     std::ofstream(world_path) << "# Generated by mpgc_run from " << s.path << "\n" << e.c_str() << "\n";
   }
+  // A fresh run: no journal or memory of an earlier one to resume from.
+  for (const char* f : {"sim_journal.bin", "opp_memory.yaml"}) fs::remove(dir / f);
   // Released when this run is over (a suite used to run out after 30).
   const auto lease = o.domain >= 0 ? std::make_unique<DomainLease>(o.domain) : std::make_unique<DomainLease>();
   const int domain = lease->id();
@@ -430,6 +487,115 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
                                      if (run.guidance.empty() || r.t > run.guidance.back().t) run.guidance.push_back(r);
                                    });
 
+  // Faults of the scenario and the health of the components: which is down, degraded or back.
+  for (const auto& f : s.faults) {
+    sr::FaultRecord r;
+    r.what = f.describe();
+    r.t_planned = f.at_s;
+    r.needs_recovery = f.kind == sr::Fault::Kind::kKill || f.kind == sr::Fault::Kind::kStop;
+    if (r.needs_recovery) r.component = f.component;
+    run.faults.push_back(r);
+  }
+  std::size_t next_fault = 0;
+  std::vector<Steady::time_point> fault_wall(run.faults.size());  // wall time of the kill or SIGCONT
+  pid_t launcher = -1;
+  struct Stopped {
+    pid_t pid;
+    std::size_t fault;
+    double until_sim;                 // SIGCONT at this simulated time...
+    Steady::time_point until_wall{};  // ...or wall time (the simulator: its clock stops with it)
+    bool wall;
+    bool continued = false;
+  };
+  std::vector<Stopped> stopped;
+  std::mutex fault_mutex;  // `stopped` and run.faults: the record timer and the wall-clock watchdog
+  // Only a run with faults has the fault topic (a secured bus grants it to nobody).
+  dds::Writer<msg::FaultCommand>* fault_w =
+      s.faults.empty() ? nullptr : &c.publisher<msg::FaultCommand>(mpgc::topics::kFaults, dds::QosProfile::command(16));
+  struct Seen {
+    uint32_t seq = 0;
+    msg::HealthState state = msg::HealthState::HEALTH_STARTING;
+    std::string detail;
+  };
+  std::map<std::string, Seen> health;
+  auto say = [&](const std::string& what) {
+    if (!o.quiet) std::printf("  %-28s sim %6.0f s  %s\n", s.name.c_str(), c.clock().now_s(), what.c_str());
+    std::fflush(stdout);
+  };
+  c.subscribe<msg::ComponentHealth>(mpgc::topics::kHealth, dds::QosProfile::latched(), [&](const msg::ComponentHealth& h) {
+    const double now = c.clock().now_s();
+    const bool known = health.count(h.component) > 0;
+    Seen& seen = health[h.component];
+    const bool restarted = known && h.header.seq < seen.seq;
+    if (restarted) say("health: " + h.component + " is back (a new process)");
+    {
+      std::lock_guard<std::mutex> g(fault_mutex);
+      for (auto& f : run.faults)
+        if (f.component == h.component && std::isfinite(f.t) && !std::isfinite(f.t_recovered)) {
+          const bool was_stop = std::any_of(stopped.begin(), stopped.end(), [&](const Stopped& x) {
+            return x.continued && &run.faults[x.fault] == &f;
+          });
+          if (restarted || was_stop) {
+            f.t_recovered = now;
+            f.wall_recovery = std::chrono::duration<double>(Steady::now() - fault_wall[&f - run.faults.data()]).count();
+          }
+        }
+    }
+    if (!known || h.state != seen.state || h.detail != seen.detail)
+      if (known || h.state != msg::HealthState::HEALTH_STARTING)
+        if (h.state != msg::HealthState::HEALTH_OK || seen.state != msg::HealthState::HEALTH_STARTING)
+          say("health: " + h.component + " " + health_name(h.state) + (h.detail.empty() ? "" : ": " + h.detail));
+    seen.seq = h.header.seq;
+    seen.state = h.state;
+    seen.detail = h.detail;
+  });
+  // Injects the faults that are due at simulated time t (the record timer's).
+  auto inject_faults = [&](double t) {
+    std::lock_guard<std::mutex> g(fault_mutex);
+    for (auto& k : stopped)
+      if (!k.continued && !k.wall && t >= k.until_sim) {
+        kill(k.pid, SIGCONT);
+        k.continued = true;
+        fault_wall[k.fault] = Steady::now();
+        run.faults[k.fault].t_end = t;
+        say("fault: " + s.faults[k.fault].component + " continued (SIGCONT)");
+      }
+    for (; next_fault < s.faults.size() && t >= s.faults[next_fault].at_s; ++next_fault) {
+      const sr::Fault& f = s.faults[next_fault];
+      sr::FaultRecord& r = run.faults[next_fault];
+      if (f.kind == sr::Fault::Kind::kKill || f.kind == sr::Fault::Kind::kStop) {
+        const pid_t pid = component_pid(launcher, f.component);
+        if (pid <= 0) {
+          say("fault: " + f.describe() + " not possible: " + f.component + " is not running");
+          continue;  // never happened: reported as such
+        }
+        kill(pid, f.kind == sr::Fault::Kind::kKill ? SIGKILL : SIGSTOP);
+        fault_wall[next_fault] = Steady::now();
+        if (f.kind == sr::Fault::Kind::kStop) {
+          const bool wall = f.component == "ship_simulator";
+          stopped.push_back({pid, next_fault, t + f.duration_s,
+                             Steady::now() + std::chrono::milliseconds(static_cast<int64_t>(f.duration_s * 1000)), wall});
+        }
+      } else {
+        msg::FaultCommand fc;
+        fc.header = c.header();
+        fc.kind = f.kind == sr::Fault::Kind::kSilence      ? msg::FaultKind::FAULT_SILENCE_TOPIC
+                  : f.kind == sr::Fault::Kind::kAisOutage   ? msg::FaultKind::FAULT_AIS_OUTAGE
+                  : f.kind == sr::Fault::Kind::kGnssDropout ? msg::FaultKind::FAULT_GNSS_DROPOUT
+                                                            : msg::FaultKind::FAULT_POSITION_JUMP;
+        fc.topic = f.topic;
+        fc.mmsi = f.mmsi;
+        fc.duration = f.duration_s;
+        fc.dx = f.dx;
+        fc.dy = f.dy;
+        fault_w->write(fc);
+        r.t_end = t + f.duration_s;
+      }
+      r.t = t;
+      say("fault: " + f.describe());
+    }
+  };
+
   msg::MissionGoal goal;
   goal.header.source = "scenario_runner";
   goal.goal_id = 1;
@@ -470,6 +636,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
                                     k.cut.host.c_str(), k.cut.duration_s);
         }
     }
+    if (!s.faults.empty()) inject_faults(t);
     if (run.t.empty()) {
       run.own.id = 0;
       run.own.length = truth.own.length > 0 ? truth.own.length : s.lpp;
@@ -501,7 +668,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     }
   });
 
-  const pid_t launcher = start_launcher(launch_path, domain, (dir / "components.log").string(), o.secure);
+  launcher = start_launcher(launch_path, domain, (dir / "components.log").string(), o.secure);
   // A wall-clock watchdog: the simulated clock stops if a component dies, so only wall time can tell.
   std::atomic<bool> done{false};
   std::thread watchdog([&] {
@@ -516,6 +683,17 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
             lab->set_cut(k.cut.host, false);
             k.ended = true, k.sim_end = c.clock().now_s();
             last_progress = Steady::now();  // a stalled clock during the cut is the cut's doing
+          }
+      }
+      {
+        std::lock_guard<std::mutex> g(fault_mutex);
+        for (auto& k : stopped)
+          if (!k.continued && k.wall && Steady::now() >= k.until_wall) {
+            kill(k.pid, SIGCONT);
+            k.continued = true;
+            fault_wall[k.fault] = Steady::now();
+            run.faults[k.fault].t_end = c.clock().now_s();
+            last_progress = Steady::now();  // the stalled clock was the stop's doing
           }
       }
       int status = 0;
@@ -538,6 +716,8 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   const int rc = c.spin();
   done = true;
   watchdog.join();
+  for (auto& k : stopped)
+    if (!k.continued) kill(k.pid, SIGCONT);  // a stopped process cannot stop
   stop_launcher(launcher);
   const double wall = std::chrono::duration<double>(Steady::now() - wall_start).count();
   if (lab) {
@@ -702,6 +882,8 @@ int main(int argc, char** argv) {
   for (const auto& f : files) {
     try {
       scenarios.push_back(sr::load_scenario(f));
+      if (!scenarios.back().faults.empty() && (!o.secure.empty() || o.containers))
+        throw std::invalid_argument(f + " injects faults: not with --secure (a secured bus takes none) or --containers");
     } catch (const std::exception& e) {
       std::cerr << "mpgc_run: " << e.what() << "\n";
       return 2;

@@ -15,6 +15,8 @@
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/ship_simulator/devices.hpp"
 #include "mpgc/ship_simulator/lockstep.hpp"
+#include "mpgc/ship_simulator/sensor_faults.hpp"
+#include "mpgc/ship_simulator/step_log.hpp"
 #include "mpgc/ship_simulator/world.hpp"
 #include "mpgc/topics.hpp"
 
@@ -35,6 +37,9 @@ struct Params {
   std::string participants;  // comma-separated component names for the lockstep barrier
   double start_settle = 0.5;  // [s] wall time between all participants alive and step 0
   double ack_timeout = 1.0;  // [s] wall time before the current Clock is sent again
+  double absent_after = 0.5; // [s] wall: a step this long short of acks, with a participant's
+                             //     liveliness lost, goes on without the missing ones
+  double hang_timeout = 0.0; // [s] wall: drop a missing participant even while alive (0 = never)
   double truth_period = 0.1; // [s] simulated time between sim/truth samples
   // Hardware in the loop (README "The simulator as hardware"): NMEA/AIS out on UDP, orders in.
   bool hil = false;
@@ -47,6 +52,7 @@ struct Params {
   std::string watchdog_engine;     // reduce | hold
   double steerage_speed = 3.0;     // [m/s] "reduce": engine to the rpm of this straight speed
   bool hil_radar = false;       // keep publishing sensors/radar in HIL (a radar with its own DDS link)
+  std::string journal;          // step journal: resume where a killed simulator left off ("" = none)
 
   void declare(rt::ParamSet& ps) {
     ps.add("world.file", &world_file, "", "world YAML file (own ship, targets, sensors; README.md)");
@@ -58,6 +64,12 @@ struct Params {
     ps.add("lockstep.start_settle", &start_settle, 0.5, "s", 0.0, 60.0,
            "wall time to let discovery settle after every participant is alive, before step 0");
     ps.add("lockstep.ack_timeout", &ack_timeout, 1.0, "s", 0.01, 60.0, "resend the Clock after this wall time without progress");
+    ps.add("lockstep.absent_after", &absent_after, 0.5, "s", 0.0, 600.0,
+           "a step this long without all acks while a participant's liveliness is lost goes on without the "
+           "missing ones (a dead component must not stop the ship); its next ack re-admits it");
+    ps.add("lockstep.hang_timeout", &hang_timeout, 0.0, "s", 0.0, 3600.0,
+           "drop a participant that is alive but has not acked for this long (0 = wait for ever; set it above "
+           "the planner's time budget)");
     ps.add("truth.period", &truth_period, 0.1, "s", 0.001, 60.0, "sim/truth publication period (simulated time)");
     ps.add("hil.enabled", &hil, false, "be the ship's devices: NMEA/AIS on UDP instead of nav/own_state, sensors/*; "
            "orders from the actuator wire instead of control/actuators");
@@ -68,6 +80,9 @@ struct Params {
     ps.add("hil.feedback_port", &feedback_port, 10113, "-", 1, 65535, "UDP port (bridge) for RSA/RPM feedback");
     ps.add("hil.orders_port", &orders_port, 10114, "-", 1, 65535, "UDP port this simulator takes ROR/PRC orders on");
     ps.add("hil.radar", &hil_radar, false, "in HIL, still publish sensors/radar (a radar with its own DDS link)");
+    ps.add("resume.journal", &journal, "",
+           "step journal file: every step's command is appended, and a restarted simulator replays it to resume "
+           "the world where it was, bit for bit (a simulator killed mid-run; \"\" = start afresh)");
     ps.add("hil.gnss_period", &gnss_period, 0.2, "s", 0.05, 10.0, "GNSS output interval (simulated time)");
     ps.add("hil.order_timeout", &order_timeout, 2.0, "s", 0.1, 60.0,
            "actuator watchdog in HIL: no rudder order this long puts the rudder amidships, the engine to watchdog.engine");
@@ -127,6 +142,7 @@ int main(int argc, char** argv) {
       bool started = false;
       bool stopped = false;
       int64_t last_progress_wall = 0;
+      int64_t step_wall = 0;   // [ns] wall time the current step's Clock was first written
       int64_t ready_wall = 0;  // [ns] wall time all participants were first seen alive
       int64_t start_wall = 0;
       int64_t next_truth_ns = 0;
@@ -134,6 +150,18 @@ int main(int argc, char** argv) {
     };
     auto st = std::make_shared<State>();
     st->cmd = world->initial_command();
+    std::shared_ptr<sim::StepLog> journal;
+    if (!p.journal.empty()) {
+      journal = std::make_shared<sim::StepLog>(p.journal);
+      if (journal->steps() > 0) {
+        st->cmd = sim::replay(*world, journal->take_commands(), st->cmd);
+        const auto period = static_cast<int64_t>(std::llround(p.truth_period * 1e9));
+        st->next_truth_ns = (world->time_ns() + period - 1) / period * period;  // the same schedule
+        c.log().warn("resumed from {}: {} steps replayed, simulated time {:.1f} s", p.journal, journal->steps(),
+                     world->time_ns() * 1e-9);
+        c.count("resumed");
+      }
+    }
     auto header = [st, world] { return msg::Header{world->time_ns(), "ship_simulator", st->seq++}; };
 
     // Sensor samples of the current step, then its Clock (a participant's tick sees its data).
@@ -172,7 +200,16 @@ int main(int argc, char** argv) {
     const std::string engine_safe = std::isnan(wd.safe_rpm) ? std::string("engine order held")
                                                             : fmt::format("engine to at most {:.1f} rpm", wd.safe_rpm);
     c.log().info("actuator watchdog: after {} s without an order, rudder amidships, {}", wd.timeout_s, engine_safe);
-    auto take_orders = [&, st, world, hil, wd, engine_safe] {
+    // Health is the sum of what is wrong: the watchdog and the lockstep barrier each report theirs.
+    auto problems = std::make_shared<std::map<std::string, std::string>>();
+    auto report = [&c, problems](const std::string& source, const std::string& detail) {
+      if (detail.empty()) problems->erase(source);
+      else (*problems)[source] = detail;
+      std::string all;
+      for (const auto& [k, v] : *problems) all += (all.empty() ? "" : "; ") + v;
+      c.set_health(all.empty() ? msg::HealthState::HEALTH_OK : msg::HealthState::HEALTH_DEGRADED, all);
+    };
+    auto take_orders = [&, st, world, hil, wd, engine_safe, report] {
       const int64_t t = world->time_ns();
       if (p.hil) {
         hil->dev->on_order_lines(hil->orders->receive_lines(), t, world->own().max_rudder(), world->own().max_rpm(), &hil->last);
@@ -187,10 +224,10 @@ int main(int argc, char** argv) {
         const std::string what = fmt::format("actuator watchdog: no order for {:.1f} s, rudder amidships, {}", silent, engine_safe);
         c.log().warn("{}", what);
         c.count("watchdog_trips");
-        c.set_health(msg::HealthState::HEALTH_DEGRADED, what);
+        report("watchdog", what);
       } else {
         c.log().info("actuator watchdog: orders again, the actuators follow them");
-        c.set_health(msg::HealthState::HEALTH_OK, "");
+        report("watchdog", "");
       }
     };
     auto hil_outputs = [&, world, hil](const sim::SensorOutputs& out) {
@@ -214,9 +251,28 @@ int main(int argc, char** argv) {
       }
     };
 
-    auto publish_step = [&, st, world, barrier, header, lockstep, hil_outputs, nav_w, ais_w, radar_w] {
-      const sim::SensorOutputs out = world->sense();
+    // Sensor faults of a scenario (faults.accept): applied to what the sensors produced.
+    auto faults = std::make_shared<sim::SensorFaults>();
+    if (c.accepts_faults())
+      c.subscribe<msg::FaultCommand>(topics::kFaults, dds::QosProfile::command(16), [&, faults](const msg::FaultCommand& f) {
+        using K = sim::SensorFaults::Kind;
+        if (f.kind == msg::FaultKind::FAULT_SILENCE_TOPIC) return;  // the runtime's
+        const K kind = f.kind == msg::FaultKind::FAULT_AIS_OUTAGE     ? K::kAisOutage
+                       : f.kind == msg::FaultKind::FAULT_GNSS_DROPOUT ? K::kGnssDropout
+                                                                      : K::kPositionJump;
+        try {
+          faults->add({kind, f.header.stamp_ns, f.header.stamp_ns + static_cast<int64_t>(std::llround(f.duration * 1e9)),
+                       f.mmsi, f.dx, f.dy});
+          c.log().warn("fault injected at {:.1f} s: kind {} for {:.1f} s", f.header.stamp_ns * 1e-9, static_cast<int>(f.kind), f.duration);
+        } catch (const std::exception& e) {
+          c.reject(topics::kFaults, e.what());
+        }
+      }, rt::check_fault);
+
+    auto publish_step = [&, st, world, barrier, header, lockstep, hil_outputs, nav_w, ais_w, radar_w, faults] {
+      sim::SensorOutputs out = world->sense();
       const int64_t t = world->time_ns();
+      if (!faults->empty() && faults->apply(t, &out) > 0) c.count("faults.sensor_outputs_changed");
       const sim::ShipState& s = world->own().state();
       if (p.hil) {
         hil_outputs(out);
@@ -249,11 +305,11 @@ int main(int argc, char** argv) {
       st->last_clock = msg::Clock{t, world->step_index(), world->step_ns(), lockstep && !barrier->empty()};
       barrier->begin(world->step_index());
       clock_w.write(st->last_clock);
-      st->last_progress_wall = c.now_ns();
+      st->last_progress_wall = st->step_wall = c.now_ns();
     };
 
     auto finished = [&, world] { return p.duration > 0.0 && world->time_ns() >= static_cast<int64_t>(std::llround(p.duration * 1e9)); };
-    auto advance = [&, st, world, publish_step, finished, take_orders] {
+    auto advance = [&, st, world, publish_step, finished, take_orders, journal] {
       if (!st->started) {
         st->started = true;
         st->start_wall = c.now_ns();
@@ -269,6 +325,7 @@ int main(int argc, char** argv) {
         return;
       }
       take_orders();  // the latest orders through the actuator watchdog
+      if (journal) journal->append(st->cmd);
       world->step(st->cmd);
       c.count("steps");
       publish_step();
@@ -296,24 +353,54 @@ int main(int argc, char** argv) {
         while (!st->stopped && c.now_ns() < until);
       });
     } else {
-      auto& acks = c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
+      auto& acks = c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance, report](const msg::StepAck& a) {
         const auto r = barrier->ack(a.component, a.step);
         if (r == sim::LockstepBarrier::Ack::Unknown) c.count("lockstep.unknown_acks");
-        if (r != sim::LockstepBarrier::Ack::Counted || !barrier->complete()) return;
+        if (r == sim::LockstepBarrier::Ack::Readmitted) {
+          c.log().warn("lockstep: {} is back (ack of step {}), waiting for it again", a.component, a.step);
+          c.count("lockstep.readmitted");
+          if (barrier->absent().empty()) report("lockstep", "");
+        }
+        if ((r != sim::LockstepBarrier::Ack::Counted && r != sim::LockstepBarrier::Ack::Readmitted) || !barrier->complete()) return;
         // The participants wrote their commands before their acks: read them all before stepping.
         c.poll();
         advance();
       });
+      // A participant that died (its ack writer's liveliness is lost) or hangs: go on without it,
+      // so the ship keeps being simulated and its watchdogs see the silence; it rejoins on restart.
+      auto drop_missing = [&, st, barrier, advance, report](const char* why) {
+        std::string names;
+        for (const auto& m : barrier->missing()) {
+          barrier->drop(m);
+          names += (names.empty() ? "" : ", ") + m;
+          c.count("lockstep.dropped");
+        }
+        if (names.empty()) return;
+        c.log().warn("lockstep: step {} goes on without [{}] ({})", st->last_clock.step, names, why);
+        std::string all;
+        for (const auto& m : barrier->absent()) all += (all.empty() ? "" : ", ") + m;
+        report("lockstep", "lockstep without [" + all + "] (" + why + ")");
+        if (barrier->complete()) {
+          c.poll();
+          advance();
+        }
+      };
       // Start once every participant is up (its ack writer is alive) and discovery has settled, so
       // all of them receive step 0's data: a run must not depend on who was discovered first.
       // Then resend the current Clock when an ack (or the Clock itself) was lost.
-      c.every(std::min(0.05, p.ack_timeout / 2), [&, st, barrier, advance] {
+      c.every(std::min(0.05, p.ack_timeout / 2), [&, st, barrier, advance, drop_missing] {
         if (!st->started) {
           if (acks.liveliness().alive_count < static_cast<int32_t>(barrier->size())) return;
           if (st->ready_wall == 0) st->ready_wall = c.now_ns();
           if (c.now_ns() - st->ready_wall < static_cast<int64_t>(p.start_settle * 1e9)) return;
           return advance();
         }
+        const int64_t waited = c.now_ns() - st->step_wall;
+        if (waited > static_cast<int64_t>(p.absent_after * 1e9) &&
+            acks.liveliness().alive_count < static_cast<int32_t>(barrier->present()))
+          return drop_missing("liveliness lost");
+        if (p.hang_timeout > 0 && waited > static_cast<int64_t>(p.hang_timeout * 1e9))
+          return drop_missing("no ack within lockstep.hang_timeout");
         if (c.now_ns() - st->last_progress_wall < static_cast<int64_t>(p.ack_timeout * 1e9)) return;
         std::string missing;
         for (const auto& m : barrier->missing()) missing += (missing.empty() ? "" : ", ") + m;

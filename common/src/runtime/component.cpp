@@ -1,5 +1,6 @@
 #include "mpgc/runtime/component.hpp"
 
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
@@ -38,6 +39,8 @@ void RuntimeParams::declare(ParamSet& ps, RuntimeParams* p) {
          "header.source of the clock's publisher: its samples stamped at a tick belong to that tick");
   ps.add("health.period", &p->health_period, 1.0, "s", 0.05, 60.0, "period of the health sample (wall time)");
   ps.add("dds.lease", &p->lease, 1.0, "s", 0.1, 30.0, "automatic liveliness lease of every writer");
+  ps.add("faults.accept", &p->accept_faults, false,
+         "honour fault injection on sim/faults (a scenario's faults: section; never on a ship)");
   ps.add("log.level", &p->log_level, "info", "log level",
          {"trace", "debug", "info", "warn", "error", "critical", "off"});
 }
@@ -66,7 +69,28 @@ Component::Component(std::string name, const RuntimeParams& rp, std::shared_ptr<
     attach(sub->reader.handle());
     clock_sub_ = std::move(sub);
   }
+  if (rp_.accept_faults) {
+    subscribe<msg::FaultCommand>(topics::kFaults, dds::QosProfile::command(16), [this](const msg::FaultCommand& f) {
+      if (f.kind != msg::FaultKind::FAULT_SILENCE_TOPIC) return;  // the simulator's own faults
+      const int64_t until = f.header.stamp_ns + static_cast<int64_t>(std::llround(f.duration * 1e9));
+      silences_.emplace(f.topic, std::make_pair(f.header.stamp_ns, until));
+      log_->warn("fault injected: {} silenced for {:.1f} s", f.topic, f.duration);
+    }, check_fault);
+  }
   g_waitset = waitset_.handle();
+}
+
+std::string check_fault(const msg::FaultCommand& f) {
+  if (!(std::isfinite(f.duration) && f.duration >= 0 && f.duration < 1e7)) return "duration must be finite, >= 0 and < 1e7 s";
+  if (!std::isfinite(f.dx) || !std::isfinite(f.dy)) return "position offset must be finite";
+  return "";
+}
+
+bool Component::silenced(const std::string& topic, int64_t t_ns) const {
+  const auto range = silences_.equal_range(topic);
+  for (auto it = range.first; it != range.second; ++it)
+    if (t_ns >= it->second.first && t_ns < it->second.second) return true;
+  return false;
 }
 
 Component::~Component() {

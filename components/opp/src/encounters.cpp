@@ -83,4 +83,24 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
   pinned_ = std::move(next);  // targets no longer tracked are forgotten
 }
 
+std::vector<PinnedRecord> EncounterMemory::records() const {
+  std::vector<PinnedRecord> out;
+  for (const auto& [id, entry] : pinned_) out.push_back({id, entry.e, entry.range0});
+  return out;
+}
+
+void EncounterMemory::restore(const std::vector<PinnedRecord>& records) {
+  std::map<uint32_t, Entry> next;
+  for (const auto& r : records) {
+    const std::string what = "pinned encounter of target " + std::to_string(r.id);
+    if (!std::isfinite(r.e.course0) || !std::isfinite(r.e.target_course) || !(std::isfinite(r.range0) && r.range0 >= 0))
+      throw std::invalid_argument(what + ": non-finite course or range");
+    if (r.e.obligation == Obligation::kNone || static_cast<int>(r.e.obligation) > static_cast<int>(Obligation::kOvertaking))
+      throw std::invalid_argument(what + ": no obligation");
+    if (r.e.track_side < -1 || r.e.track_side > 1) throw std::invalid_argument(what + ": track_side must be -1, 0 or 1");
+    if (!next.emplace(r.id, Entry{r.e, r.range0}).second) throw std::invalid_argument(what + ": listed twice");
+  }
+  pinned_ = std::move(next);
+}
+
 }  // namespace mpgc::opp

@@ -753,6 +753,13 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
     if (req.compliant && !it->compliant && !criteria.all_encounters_compliant)
       m.failures.push_back("COLREG: " + describe_failures(*it));
   }
+  m.faults = run.faults;
+  for (const auto& f : run.faults) {
+    if (!std::isfinite(f.t))
+      m.failures.push_back("fault '" + f.what + "' planned at " + fmt(f.t_planned) + " s never happened (the run ended first)");
+    else if (f.needs_recovery && !std::isfinite(f.t_recovered))
+      m.failures.push_back("fault '" + f.what + "' at " + fmt(f.t) + " s: " + f.component + " never came back");
+  }
   m.passed = m.failures.empty();
   return m;
 }

@@ -1,5 +1,6 @@
 #include "mpgc/scenario_runner/report.hpp"
 
+#include <map>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -112,8 +113,27 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
       << ", \"conflicting_obligation\": " << boolean(e.conflicting_obligation)
       << ", \"compliant\": " << boolean(e.compliant) << "}";
   }
-  o << (m.encounters.empty() ? "]\n" : "\n  ]\n");
-  o << "}\n";
+  o << (m.encounters.empty() ? "],\n" : "\n  ],\n");
+  // Faults and recoveries: each fault, then per component how often it was killed and came back.
+  o << "  \"faults\": [";
+  std::map<std::string, std::pair<int, int>> per_component;  // killed or stopped, recovered
+  for (std::size_t i = 0; i < m.faults.size(); ++i) {
+    const FaultRecord& f = m.faults[i];
+    o << (i ? ",\n" : "\n") << "    {\"what\": " << quote(f.what) << ", \"component\": " << quote(f.component)
+      << ", \"planned_s\": " << num(f.t_planned) << ", \"t_s\": " << num(f.t) << ", \"end_s\": " << num(f.t_end)
+      << ", \"recovered_s\": " << num(f.t_recovered) << ", \"recovery_s\": "
+      << num(f.needs_recovery ? f.t_recovered - f.t : kNaN) << ", \"recovery_wall_s\": " << num(f.wall_recovery) << "}";
+    if (f.needs_recovery) {
+      auto& pc = per_component[f.component];
+      ++pc.first;
+      pc.second += std::isfinite(f.t_recovered) ? 1 : 0;
+    }
+  }
+  o << (m.faults.empty() ? "],\n" : "\n  ],\n") << "  \"recoveries\": {";
+  std::size_t k = 0;
+  for (const auto& [c, n] : per_component)
+    o << (k++ ? ", " : "") << quote(c) << ": {\"faulted\": " << n.first << ", \"recovered\": " << n.second << "}";
+  o << "}\n}\n";
 }
 
 void write_timeseries_csv(std::ostream& o, const RunRecord& run) {

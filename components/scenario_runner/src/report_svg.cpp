@@ -417,6 +417,19 @@ void write_dtc_svg(std::ostream& o, const RunRecord& run, const Metrics& m, cons
   o << "<line x1=\"" << f1(f.left) << "\" y1=\"" << f1(ys(run.safety_distance)) << "\" x2=\"" << f1(f.right())
     << "\" y2=\"" << f1(ys(run.safety_distance)) << "\" stroke=\"black\" stroke-width=\"1.4\" stroke-dasharray=\"7 4\"/>\n";
   label(o, f.right() - 6, ys(run.safety_distance) - 6, "d_safety", 12, "end", "black");
+  // Faults: a dashed line where each began, a shaded band over its window, its recovery marked.
+  for (const auto& fr : run.faults) {
+    if (!std::isfinite(fr.t)) continue;
+    const double x0 = xs(fr.t);
+    if (std::isfinite(fr.t_end))
+      o << "<rect x=\"" << f1(x0) << "\" y=\"" << f1(f.top) << "\" width=\"" << f1(std::max(1.0, xs(fr.t_end) - x0))
+        << "\" height=\"" << f1(f.height) << "\" fill=\"#ff7f0e\" fill-opacity=\"0.12\"/>\n";
+    o << "<line x1=\"" << f1(x0) << "\" y1=\"" << f1(f.top) << "\" x2=\"" << f1(x0) << "\" y2=\"" << f1(f.bottom())
+      << "\" stroke=\"#ff7f0e\" stroke-width=\"1.2\" stroke-dasharray=\"3 3\"/>\n";
+    label(o, x0 + 3, f.top + 12, fr.what, 10, "start", "#a04000");
+    if (std::isfinite(fr.t_recovered))
+      o << "<circle cx=\"" << f1(xs(fr.t_recovered)) << "\" cy=\"" << f1(f.top + 20) << "\" r=\"3\" fill=\"#2ca02c\"/>\n";
+  }
   o << "</g>\n";
 
   Legend L{o, f.right() + 24, f.top + 8};
@@ -432,6 +445,10 @@ void write_dtc_svg(std::ostream& o, const RunRecord& run, const Metrics& m, cons
   }
   L.line("black", 1.4, "d_safety = " + f1(run.safety_distance / u, 1) + un, "7 4");
   L.row("<circle cx=\"13\" cy=\"0\" r=\"3.5\" fill=\"white\" stroke=\"#555\" stroke-width=\"1.5\"/>", "Minimum");
+  if (!run.faults.empty()) {
+    L.line("#ff7f0e", 1.2, "Fault injected (window shaded)", "3 3");
+    L.row("<circle cx=\"13\" cy=\"0\" r=\"3\" fill=\"#2ca02c\"/>", "Component back");
+  }
   L.y += 10;
   L.note("below d_safety: " + f1(m.safety_violation_s, 1) + " s", m.safety_violation_s > 0 ? "#b00000" : "#333333");
   o << "</svg>\n";

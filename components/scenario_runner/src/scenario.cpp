@@ -1,6 +1,9 @@
 #include "mpgc/scenario_runner/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -70,7 +73,140 @@ colreg::EncounterType encounter_from(const std::string& origin, const YAML::Node
   fail(origin, n, "situation", "unknown situation '" + s + "'");
 }
 
+// The five components of a run: those a scenario may set parameters of, or inject faults into.
+const std::set<std::string>& run_components() {
+  static const std::set<std::string> c{"ship_simulator", "situational_awareness", "obstacle_manager", "opp",
+                                       "guidance_control"};
+  return c;
+}
+
+std::vector<Fault> parse_faults(const std::string& origin, const YAML::Node& list, const YAML::Node& world) {
+  if (!list.IsSequence()) fail(origin, list, "faults", "must be a list");
+  std::set<std::uint32_t> mmsis;
+  for (const auto& t : world["targets"]) if (t["mmsi"]) mmsis.insert(t["mmsi"].as<std::uint32_t>());
+  std::vector<Fault> out;
+  for (const auto& n : list) {
+    only_keys(origin, n, "faults[]", {"at_s", "for_s", "kill", "stop", "silence", "ais_outage", "gnss_dropout", "position_jump_m"});
+    Fault f;
+    f.at_s = number(origin, n, "at_s", 0, 0, 1e7, true);
+    int kinds = 0;
+    const bool timed = n["for_s"].IsDefined();
+    f.duration_s = number(origin, n, "for_s", 0, 0.001, 1e6);
+    auto component = [&](const char* key) {
+      f.component = text(origin, n, key, "");
+      if (!run_components().count(f.component))
+        fail(origin, n[key], std::string("faults[].") + key, "'" + f.component + "' is not one of the five components");
+    };
+    if (n["kill"]) f.kind = Fault::Kind::kKill, component("kill"), ++kinds;
+    if (n["stop"]) f.kind = Fault::Kind::kStop, component("stop"), ++kinds;
+    if (n["silence"]) {
+      f.kind = Fault::Kind::kSilence, ++kinds;
+      f.topic = text(origin, n, "silence", "");
+      if (f.topic.empty()) fail(origin, n["silence"], "faults[].silence", "needs a topic name");
+    }
+    if (n["ais_outage"]) {
+      f.kind = Fault::Kind::kAisOutage, ++kinds;
+      f.mmsi = static_cast<std::uint32_t>(number(origin, n, "ais_outage", 0, 1, 999999999, true));
+      if (!mmsis.count(f.mmsi)) fail(origin, n["ais_outage"], "faults[].ais_outage", "no target has MMSI " + std::to_string(f.mmsi));
+    }
+    if (n["gnss_dropout"]) f.kind = Fault::Kind::kGnssDropout, ++kinds;
+    if (const YAML::Node j = n["position_jump_m"]) {
+      f.kind = Fault::Kind::kPositionJump, ++kinds;
+      if (!j.IsSequence() || j.size() != 2) fail(origin, j, "faults[].position_jump_m", "must be [north, east]");
+      try {
+        f.dx = j[0].as<double>(), f.dy = j[1].as<double>();
+      } catch (const YAML::Exception&) {
+        fail(origin, j, "faults[].position_jump_m", "must be two numbers");
+      }
+      if (!std::isfinite(f.dx) || !std::isfinite(f.dy) || std::hypot(f.dx, f.dy) > 1e5)
+        fail(origin, j, "faults[].position_jump_m", "must be finite and within 100 km");
+    }
+    if (kinds != 1) fail(origin, n, "faults[]", "give exactly one of kill, stop, silence, ais_outage, gnss_dropout, position_jump_m");
+    if (f.kind == Fault::Kind::kKill && timed) fail(origin, n["for_s"], "faults[].for_s", "a kill has no duration");
+    if (f.kind != Fault::Kind::kKill && !timed) fail(origin, n, "faults[].for_s", "is required for this fault");
+    out.push_back(f);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Fault& a, const Fault& b) { return a.at_s < b.at_s; });
+  return out;
+}
+
+std::string expand_shared(std::string path) {
+  const std::string var = "$MPGC_SHARED_DATA";
+  const auto at = path.find(var);
+  if (at == std::string::npos) return path;
+  const char* d = std::getenv("MPGC_SHARED_DATA");
+  if (d == nullptr) throw std::runtime_error("MPGC_SHARED_DATA is not set (./mpgc sets it)");
+  return path.replace(at, var.size(), d);
+}
+
+PassCriteria parse_criteria(const std::string& origin, const YAML::Node& c) {
+  only_keys(origin, c, "criteria", {"goal", "safety_tolerance", "max_safety_violation_s", "colreg_compliant", "targets"});
+  PassCriteria out;
+  out.goal_required = boolean(origin, c, "goal", true);
+  out.safety_tolerance = number(origin, c, "safety_tolerance", 0, 0, 1);
+  out.max_safety_violation_s = number(origin, c, "max_safety_violation_s", 0, 0, 1e6);
+  out.all_encounters_compliant = boolean(origin, c, "colreg_compliant", false);
+  if (const YAML::Node ts = c["targets"]) {
+    if (!ts.IsSequence()) fail(origin, ts, "criteria.targets", "must be a list");
+    for (const auto& t : ts) {
+      only_keys(origin, t, "criteria.targets[]", {"id", "situation", "compliant"});
+      RequiredEncounter r;
+      r.target_id = static_cast<std::uint32_t>(number(origin, t, "id", 0, 1, 1e6, true));
+      if (t["situation"]) {
+        r.situation = encounter_from(origin, t["situation"]);
+        r.check_situation = true;
+      }
+      r.compliant = boolean(origin, t, "compliant", true);
+      out.required.push_back(r);
+    }
+  }
+  return out;
+}
+
+void parse_params(const std::string& origin, const YAML::Node& p,
+                  std::map<std::string, std::map<std::string, std::string>>* params) {
+  only_keys(origin, p, "params", run_components());
+  for (const auto& kv : p) {
+    const std::string comp = kv.first.as<std::string>();
+    if (!kv.second.IsMap()) fail(origin, kv.second, "params." + comp, "must be a mapping name: value");
+    for (const auto& nv : kv.second) {
+      if (!nv.second.IsScalar()) fail(origin, nv.second, "params." + comp + "." + nv.first.Scalar(), "must be a scalar");
+      (*params)[comp][nv.first.as<std::string>()] = nv.second.Scalar();
+    }
+  }
+}
+
+// `from: FILE` with the file's own name, description, faults, criteria, time limit and parameters.
+Scenario derived_scenario(const YAML::Node& root, const std::string& origin);
+
 }  // namespace
+
+const char* to_string(Fault::Kind k) {
+  switch (k) {
+    case Fault::Kind::kKill: return "kill";
+    case Fault::Kind::kStop: return "stop";
+    case Fault::Kind::kSilence: return "silence";
+    case Fault::Kind::kAisOutage: return "ais_outage";
+    case Fault::Kind::kGnssDropout: return "gnss_dropout";
+    case Fault::Kind::kPositionJump: return "position_jump";
+  }
+  return "?";
+}
+
+std::string Fault::describe() const {
+  char b[160];
+  switch (kind) {
+    case Kind::kKill: return "kill " + component;
+    case Kind::kStop: std::snprintf(b, sizeof b, "stop %s for %.0f s", component.c_str(), duration_s); break;
+    case Kind::kSilence: std::snprintf(b, sizeof b, "silence %s for %.0f s", topic.c_str(), duration_s); break;
+    case Kind::kAisOutage: std::snprintf(b, sizeof b, "AIS outage of %u for %.0f s", mmsi, duration_s); break;
+    case Kind::kGnssDropout: std::snprintf(b, sizeof b, "GNSS dropout for %.0f s", duration_s); break;
+    case Kind::kPositionJump:
+      std::snprintf(b, sizeof b, "position jump (%.0f, %.0f) m for %.0f s", dx, dy, duration_s);
+      break;
+  }
+  return b;
+}
 
 YAML::Node lpp_to_metres(const YAML::Node& n, double lpp) {
   if (n.IsMap()) {
@@ -129,9 +265,11 @@ Scenario parse_scenario(const std::string& yaml, const std::string& origin) {
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(origin + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
   }
+  if (root.IsMap() && root["from"]) return derived_scenario(root, origin);
   only_keys(origin, root, "scenario",
             {"name", "description", "lpp_m", "plot_units", "world", "goal", "safety_distance_m",
-             "safety_distance_lpp", "colreg", "obstacles", "time_limit_s", "evaluation", "criteria", "params"});
+             "safety_distance_lpp", "colreg", "obstacles", "time_limit_s", "evaluation", "criteria", "params",
+             "faults"});
   Scenario s;
   s.path = origin;
   s.name = text(origin, root, "name", "");
@@ -197,41 +335,9 @@ Scenario parse_scenario(const std::string& yaml, const std::string& origin) {
     if (ev["min_cpa_m"]) s.evaluation_min_cpa = number(origin, ev, "min_cpa_m", 0, 1.0, 1e5);
   }
 
-  if (const YAML::Node c = root["criteria"]) {
-    only_keys(origin, c, "criteria", {"goal", "safety_tolerance", "max_safety_violation_s", "colreg_compliant", "targets"});
-    s.criteria.goal_required = boolean(origin, c, "goal", true);
-    s.criteria.safety_tolerance = number(origin, c, "safety_tolerance", 0, 0, 1);
-    s.criteria.max_safety_violation_s = number(origin, c, "max_safety_violation_s", 0, 0, 1e6);
-    s.criteria.all_encounters_compliant = boolean(origin, c, "colreg_compliant", false);
-    if (const YAML::Node ts = c["targets"]) {
-      if (!ts.IsSequence()) fail(origin, ts, "criteria.targets", "must be a list");
-      for (const auto& t : ts) {
-        only_keys(origin, t, "criteria.targets[]", {"id", "situation", "compliant"});
-        RequiredEncounter r;
-        r.target_id = static_cast<std::uint32_t>(number(origin, t, "id", 0, 1, 1e6, true));
-        if (t["situation"]) {
-          r.situation = encounter_from(origin, t["situation"]);
-          r.check_situation = true;
-        }
-        r.compliant = boolean(origin, t, "compliant", true);
-        s.criteria.required.push_back(r);
-      }
-    }
-  }
-
-  if (const YAML::Node p = root["params"]) {
-    static const std::set<std::string> components{"ship_simulator", "situational_awareness", "obstacle_manager", "opp",
-                                                  "guidance_control"};
-    only_keys(origin, p, "params", components);
-    for (const auto& kv : p) {
-      const std::string comp = kv.first.as<std::string>();
-      if (!kv.second.IsMap()) fail(origin, kv.second, "params." + comp, "must be a mapping name: value");
-      for (const auto& nv : kv.second) {
-        if (!nv.second.IsScalar()) fail(origin, nv.second, "params." + comp + "." + nv.first.Scalar(), "must be a scalar");
-        s.params[comp][nv.first.as<std::string>()] = nv.second.Scalar();
-      }
-    }
-  }
+  if (const YAML::Node c = root["criteria"]) s.criteria = parse_criteria(origin, c);
+  if (const YAML::Node p = root["params"]) parse_params(origin, p, &s.params);
+  if (const YAML::Node f = root["faults"]) s.faults = parse_faults(origin, f, s.world);
   return s;
 }
 
@@ -240,6 +346,31 @@ EvaluationParams evaluation_params(const Scenario& s, double own_length) {
   if (s.evaluation_min_cpa > 0.0) return EvaluationParams::scaled_to(own_length, 100.0 * own_length / s.evaluation_min_cpa);
   return EvaluationParams::scaled_to(own_length);
 }
+
+namespace {
+Scenario derived_scenario(const YAML::Node& root, const std::string& origin) {
+  only_keys(origin, root, "scenario", {"from", "name", "description", "time_limit_s", "criteria", "params", "faults"});
+  std::string from;
+  try {
+    from = expand_shared(text(origin, root, "from", ""));
+  } catch (const std::exception& e) {
+    fail(origin, root["from"], "from", e.what());
+  }
+  const std::filesystem::path base_path =
+      std::filesystem::path(from).is_absolute() ? std::filesystem::path(from) : std::filesystem::path(origin).parent_path() / from;
+  if (!std::filesystem::exists(base_path)) fail(origin, root["from"], "from", "no such scenario file " + base_path.string());
+  Scenario s = load_scenario(base_path.string());
+  s.path = origin;
+  s.name = text(origin, root, "name", "");
+  if (s.name.empty()) fail(origin, root, "name", "is required");
+  s.description = text(origin, root, "description", s.description);
+  s.time_limit = number(origin, root, "time_limit_s", s.time_limit, 1.0, 1e6);
+  if (const YAML::Node c = root["criteria"]) s.criteria = parse_criteria(origin, c);
+  if (const YAML::Node p = root["params"]) parse_params(origin, p, &s.params);
+  if (const YAML::Node f = root["faults"]) s.faults = parse_faults(origin, f, s.world);
+  return s;
+}
+}  // namespace
 
 Scenario load_scenario(const std::string& path) {
   if (std::filesystem::path(path).extension() == ".json") return dnv_scenario(path);

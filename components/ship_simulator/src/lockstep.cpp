@@ -19,14 +19,32 @@ void LockstepBarrier::begin(uint64_t step) {
 
 LockstepBarrier::Ack LockstepBarrier::ack(const std::string& component, uint64_t step) {
   if (!participants_.count(component)) return Ack::Unknown;
+  if (absent_.erase(component) > 0) {
+    if (step == step_) acked_.insert(component);
+    else acked_.erase(component);  // an old step's ack: it owes the current one
+    return Ack::Readmitted;
+  }
   if (step != step_) return Ack::Stale;
   return acked_.insert(component).second ? Ack::Counted : Ack::Duplicate;
+}
+
+bool LockstepBarrier::drop(const std::string& component) {
+  if (!participants_.count(component) || absent_.count(component)) return false;
+  absent_.insert(component);
+  acked_.erase(component);
+  return true;
+}
+
+bool LockstepBarrier::complete() const {
+  for (const auto& p : participants_)
+    if (!absent_.count(p) && !acked_.count(p)) return false;
+  return true;
 }
 
 std::vector<std::string> LockstepBarrier::missing() const {
   std::vector<std::string> out;
   for (const auto& p : participants_)
-    if (!acked_.count(p)) out.push_back(p);
+    if (!absent_.count(p) && !acked_.count(p)) out.push_back(p);
   return out;
 }
 

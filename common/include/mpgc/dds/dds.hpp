@@ -145,6 +145,7 @@ class Writer {
       : topic_(t.name()), e_(check(dds_create_writer(p.handle(), t.handle(), Qos(profile, true).get(), nullptr),
                                    "create writer on '" + t.name() + "'")) {}
   void write(const T& v) {
+    if (muted_ && muted_(v)) return;  // fault injection (Component, faults.accept)
     Arena arena;
     typename T::CType c{};
     to_c(v, c, arena);
@@ -158,10 +159,13 @@ class Writer {
   }
   dds_entity_t handle() const { return e_.handle(); }
   const std::string& topic() const { return topic_; }
+  // Samples for which `muted` returns true are dropped instead of written.
+  void mute_while(std::function<bool(const T&)> muted) { muted_ = std::move(muted); }
 
  private:
   std::string topic_;
   Entity e_;
+  std::function<bool(const T&)> muted_;
 };
 
 template <class T>

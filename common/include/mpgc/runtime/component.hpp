@@ -49,6 +49,7 @@ struct RuntimeParams {
   double health_period = 1.0;     // [s] health.period (wall time)
   double lease = 1.0;             // [s] dds.lease: liveliness lease of every writer
   std::string log_level = "info"; // log.level
+  bool accept_faults = false;     // faults.accept: honour sim/faults (simulated runs only)
   static void declare(ParamSet& ps, RuntimeParams* p);
 };
 
@@ -64,6 +65,7 @@ class Component {
   const Clock& clock() const { return *clock_; }
   int64_t now_ns() const { return clock_->now_ns(); }
   dds::Participant& participant() { return participant_; }
+  bool accepts_faults() const { return rp_.accept_faults; }
 
   // A header stamped with the component's clock and name.
   msg::Header header();
@@ -74,6 +76,17 @@ class Component {
     if (sim_clock_ != nullptr) qos = qos.deterministic();
     auto w = std::make_unique<dds::Writer<T>>(participant_, topic_for<T>(topic), qos);
     auto& ref = *w;
+    if (rp_.accept_faults) {
+      // A silenced topic (FAULT_SILENCE_TOPIC) drops the samples stamped inside the fault's window:
+      // the stamp is the simulated time also for the simulator, which runs on the wall clock.
+      ref.mute_while([this, topic](const T& v) {
+        int64_t t = now_ns();
+        if constexpr (HasHeader<T>::value) t = v.header.stamp_ns;
+        if (!silenced(topic, t)) return false;
+        count("faults.silenced." + topic);
+        return true;
+      });
+    }
     owned_.push_back(std::shared_ptr<void>(std::move(w)));
     return ref;
   }
@@ -203,6 +216,7 @@ class Component {
     if (it == topics_.end()) it = topics_.emplace(name, std::make_shared<dds::Topic<T>>(participant_, name)).first;
     return *static_cast<const dds::Topic<T>*>(it->second.get());
   }
+  bool silenced(const std::string& topic, int64_t t_ns) const;
   void attach(dds_entity_t reader);
   void watch_liveliness(dds_entity_t reader, std::function<void(int32_t)> cb);
   void on_clock(const msg::Clock& c);
@@ -225,6 +239,7 @@ class Component {
   std::vector<Timer> timers_;
   std::vector<Liveliness> liveliness_;
   std::map<std::string, uint64_t> counters_;
+  std::multimap<std::string, std::pair<int64_t, int64_t>> silences_;  // topic -> [from, until) [ns]
   std::map<std::string, int64_t> last_reject_log_ns_;
   uint64_t rejected_ = 0;
   msg::HealthState health_state_ = msg::HealthState::HEALTH_STARTING;
@@ -236,6 +251,9 @@ class Component {
   std::atomic<bool> stop_{false};
   int exit_code_ = 0;
 };
+
+// Why a sim/faults sample is unusable, or "" (a duration must be finite and >= 0, offsets finite).
+std::string check_fault(const msg::FaultCommand& f);
 
 // Parses the command line (--params FILE, --set name=value, --log-level, --domain, --help),
 // validates every parameter, builds the component, calls `setup`, and spins. --help prints the

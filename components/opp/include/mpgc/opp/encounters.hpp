@@ -35,6 +35,13 @@ struct EncounterMemoryParams {
   void validate() const;
 };
 
+// One pinned encounter as it is remembered across a restart (memory.hpp).
+struct PinnedRecord {
+  uint32_t id = 0;     // [-] target id
+  PinnedEncounter e;
+  double range0 = 0;   // [m] range when pinned
+};
+
 class EncounterMemory {
  public:
   // Own ship and targets at the same time (the plan's t = 0). Pins new encounters, releases
@@ -44,6 +51,11 @@ class EncounterMemory {
   // The pinned obligation of a target id (kNone when there is none).
   PinnedEncounter find(uint32_t id) const;
   std::size_t size() const { return pinned_.size(); }
+  // What a restarted planner needs to hold the same obligations (ordered by id).
+  std::vector<PinnedRecord> records() const;
+  // Replaces the memory; throws std::invalid_argument (memory unchanged) on a non-finite angle or
+  // range, an unknown obligation or a duplicate id.
+  void restore(const std::vector<PinnedRecord>& records);
 
  private:
   struct Entry {

@@ -96,6 +96,18 @@ struct Goal {
   double radius = 0.0;  // [m] arrival radius (> 0)
 };
 
+// A fault injected during the run (scenario `faults:`) and what became of it; the runner fills it.
+struct FaultRecord {
+  std::string what;            // e.g. "kill opp" (Fault::describe)
+  std::string component;       // the process killed or stopped; "" for the other faults
+  double t_planned = kNaN;     // [s] when the scenario asked for it
+  double t = kNaN;             // [s] when it was injected; NaN: never (the run ended first)
+  double t_end = kNaN;         // [s] end of its window (timed faults)
+  bool needs_recovery = false; // a kill or stop: the component must come back
+  double t_recovered = kNaN;   // [s] first sign of life of the component afterwards (health)
+  double wall_recovery = kNaN; // [s] wall time from the fault (kill, or SIGCONT) to that sign
+};
+
 struct RunRecord {
   std::vector<double> t;           // [s] sample times, strictly increasing (a fixed rate is usual)
   ShipTrack own;                   // states.size() == t.size()
@@ -105,6 +117,7 @@ struct RunRecord {
   FixedObstacles obstacles;
   double safety_distance = 0.0;  // [m] d_safety (seed 000 eq. 4), > 0
   Goal goal;
+  std::vector<FaultRecord> faults;  // in order of t_planned
 
   // Throws std::invalid_argument naming the first bad field (sizes, NaN/inf, order, ids).
   void validate() const;
@@ -277,6 +290,9 @@ struct Metrics {
 
   double scale = 1.0;  // [-] EvaluationParams::scale used
   std::vector<EncounterResult> encounters;  // one per target, in target order
+  // The run's faults (RunRecord::faults); a fault that never happened, or a killed or stopped
+  // component that never came back, fails the run.
+  std::vector<FaultRecord> faults;
 };
 
 // Distances over time, sample by sample (the DTC series of seed 000 Fig. 10/16/19).

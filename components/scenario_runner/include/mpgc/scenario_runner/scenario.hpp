@@ -14,6 +14,27 @@
 
 namespace mpgc::scenario_runner {
 
+// A fault injected during a run (scenario key `faults:`, scenarios/README.md "Faults").
+struct Fault {
+  enum class Kind {
+    kKill,          // SIGKILL the component's process (the launcher restarts it)
+    kStop,          // SIGSTOP it for duration_s, then SIGCONT (a hung process)
+    kSilence,       // every writer of `topic` drops its samples for duration_s
+    kAisOutage,     // target `mmsi`'s AIS reports stop for duration_s
+    kGnssDropout,   // no own-ship navigation output for duration_s
+    kPositionJump,  // the reported own-ship position is off by (dx, dy) for duration_s
+  };
+  Kind kind = Kind::kKill;
+  double at_s = 0.0;        // [s] simulated time it begins
+  double duration_s = 0.0;  // [s] simulated (kStop of the ship_simulator: wall, its clock stops)
+  std::string component;    // kKill, kStop
+  std::string topic;        // kSilence
+  std::uint32_t mmsi = 0;   // kAisOutage
+  double dx = 0.0, dy = 0.0;  // [m] kPositionJump
+  std::string describe() const;  // e.g. "kill opp", "silence sensors/ais for 60 s"
+};
+const char* to_string(Fault::Kind k);  // "kill", "stop", "silence", "ais_outage", ...
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -38,6 +59,7 @@ struct Scenario {
   PassCriteria criteria;
   // Per-component parameter overrides: component -> (name -> value).
   std::map<std::string, std::map<std::string, std::string>> params;
+  std::vector<Fault> faults;     // in the order of at_s
 };
 
 // The evaluation's parameters for an own ship of `own_length` [m]: scaled to the length, or so
@@ -46,7 +68,9 @@ EvaluationParams evaluation_params(const Scenario& s, double own_length);
 
 // Reads a scenario file: YAML (format above), or a DNV ship-traffic-generator situation (*.json,
 // converted by dnv_scenario). Throws std::runtime_error "<file>:<line>: <key>: <problem>" (YAML)
-// or "<file>: <field>: <problem>" (JSON).
+// or "<file>: <field>: <problem>" (JSON). A YAML file with `from: FILE` is that scenario (YAML or
+// JSON; relative to the file's folder, $MPGC_SHARED_DATA expanded) with its own name,
+// description, faults, criteria, time limit and parameters on top.
 Scenario load_scenario(const std::string& path);
 Scenario parse_scenario(const std::string& yaml, const std::string& origin);
 
