@@ -800,6 +800,12 @@ int main(int argc, char** argv) {
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--quiet", o.quiet, "no progress lines");
+  bool late_plans = false;
+  app.add_flag("--late-plans", late_plans,
+               "lockstep: a plan takes effect after its computing time in simulated time, at the paper's 0.5 s per "
+               "20000 iterations (seed 000 §6: the ship follows the old path meanwhile); = --plan-latency 25e-6");
+  app.add_option("--plan-latency", o.plan_latency, "lockstep: simulated seconds one planner iteration takes (late plans)")
+      ->check(CLI::Range(0.0, 1e-2));
   app.add_option("--domain", o.domain, "DDS domain of the run (default: a free one in 201..230)")->check(CLI::Range(0, 230));
   app.add_flag("--hil", o.hil,
                "hardware in the loop: the simulator as the ship's devices (NMEA/AIS to gpsd, orders on the actuator "
@@ -824,6 +830,7 @@ int main(int argc, char** argv) {
                  "this folder (deploy/security/make-pki.sh DIR)");
   CLI11_PARSE(app, argc, argv);
   if (o.hil && o.realtime_factor <= 0) o.realtime_factor = kHilFactor;
+  if (late_plans && o.plan_latency == 0.0) o.plan_latency = 25e-6;  // 0.5 s / 20000 iterations
   try {
     if (hosts_file.empty() && (!link.empty() || !cuts.empty() || o.capture || o.containers))
       throw std::invalid_argument("--link, --cut, --capture and --containers need --hosts");

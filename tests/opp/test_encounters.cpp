@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "mpgc/opp/encounters.hpp"
+#include "mpgc/opp/memory.hpp"
 
 namespace opp = mpgc::opp;
 namespace colreg = mpgc::colreg;
@@ -123,4 +125,51 @@ TEST(EncounterMemory, AGiveWayManoeuvreThatOpensTheRangeDoesNotEndTheEncounter) 
   std::vector<opp::Target> t2{target(2, 6000, 3000, -90)};
   mem.update(params(), own_at(-4000, 1500, 180), t2);
   EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kNone);
+}
+
+// A restarted opp reads its memory back (memory.hpp): the same obligations after the manoeuvre
+// as if it had never died.
+TEST(PlannerMemory, ARestartedPlannerHoldsTheSameObligations) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(1, 12000, -200, 180), target(2, 6000, 6000, -90)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  const opp::PlannerMemory saved{1, 7, 1, {{0.5, 1.0 / 3.0}, {1000, 2000}}, mem.records()};
+  const std::string path = ::testing::TempDir() + "/opp_memory_test.yaml";
+  opp::save_memory(path, saved);
+  const auto back = opp::load_memory(path);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->plan_id, 7u);
+  ASSERT_EQ(back->last_path.size(), 2u);
+  EXPECT_EQ(back->last_path[0].y, 1.0 / 3.0);  // exact: 17 digits
+  opp::EncounterMemory restarted;
+  restarted.restore(back->pinned);
+  // Both memories judge the situation after a turn to starboard alike.
+  std::vector<opp::Target> a{target(1, 11000, -200, 180), target(2, 5500, 5500, -90)}, b = a;
+  mem.update(params(), own_at(500, 300, 40), a);
+  restarted.update(params(), own_at(500, 300, 40), b);
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].pinned.obligation, b[i].pinned.obligation);
+    EXPECT_EQ(a[i].pinned.course0, b[i].pinned.course0);
+  }
+  EXPECT_FALSE(opp::load_memory(path + ".none").has_value());
+  std::remove(path.c_str());
+}
+
+TEST(PlannerMemory, AMalformedMemoryIsRefusedByName) {
+  EXPECT_THROW(opp::memory_from_yaml("goal_id: 1\nplan_id: x\n", "m.yaml"), std::invalid_argument);
+  EXPECT_THROW(opp::memory_from_yaml("[1, 2]", "m.yaml"), std::invalid_argument);
+  const std::string bad_pin =
+      "goal_id: 1\nplan_id: 2\nwarm_goal: 1\nlast_path: []\npinned: [{id: 3, obligation: 9, course0: 0, track_side: 1, "
+      "target_course: 0, range0: 10}]\n";
+  try {
+    opp::memory_from_yaml(bad_pin, "m.yaml");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("m.yaml"), std::string::npos);
+  }
+  EXPECT_THROW(opp::memory_from_yaml("goal_id: 1\nplan_id: 2\nwarm_goal: 1\nlast_path: [[.nan, 0]]\npinned: []\n", "m"),
+               std::invalid_argument);
+  opp::EncounterMemory m;
+  opp::PinnedRecord r{4, {opp::Obligation::kHeadOn, 0.0, 1, 0.0}, 100};
+  EXPECT_THROW(m.restore({r, r}), std::invalid_argument);  // twice
 }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "mpgc/scenario_runner/scenario.hpp"
 #include "mpgc/testing.hpp"
@@ -72,4 +73,56 @@ TEST(ScenarioFile, EveryShippedScenarioLoads) {
     ++n;
   }
   EXPECT_GE(n, 11);
+}
+
+TEST(ScenarioFile, FaultsAreParsedInTimeOrderAndCheckedByName) {
+  const std::string y = std::string(kMinimal) + R"(faults:
+  - {at_s: 50, stop: opp, for_s: 10}
+  - {at_s: 20, kill: guidance_control}
+  - {at_s: 30, silence: sensors/ais, for_s: 5}
+  - {at_s: 40, ais_outage: 257000001, for_s: 60}
+  - {at_s: 60, gnss_dropout: true, for_s: 2}
+  - {at_s: 70, position_jump_m: [200, -50], for_s: 3}
+)";
+  const sr::Scenario s = sr::parse_scenario(y, "s.yaml");
+  ASSERT_EQ(s.faults.size(), 6u);
+  EXPECT_EQ(s.faults[0].kind, sr::Fault::Kind::kKill);
+  EXPECT_EQ(s.faults[0].component, "guidance_control");
+  EXPECT_EQ(s.faults[1].describe(), "silence sensors/ais for 5 s");
+  EXPECT_EQ(s.faults[2].mmsi, 257000001u);
+  EXPECT_EQ(s.faults[3].describe(), "stop opp for 10 s");
+  EXPECT_EQ(s.faults[5].dy, -50.0);
+  const std::string base = std::string(kMinimal) + "faults:\n";
+  EXPECT_NE(error_of(base + "  - {at_s: 1, kill: radar}\n").find("'radar' is not one of the five components"), std::string::npos);
+  EXPECT_NE(error_of(base + "  - {at_s: 1, kill: opp, for_s: 3}\n").find("a kill has no duration"), std::string::npos);
+  EXPECT_NE(error_of(base + "  - {at_s: 1, stop: opp}\n").find("for_s: is required"), std::string::npos);
+  EXPECT_NE(error_of(base + "  - {at_s: 1, ais_outage: 99, for_s: 3}\n").find("no target has MMSI 99"), std::string::npos);
+  EXPECT_NE(error_of(base + "  - {at_s: 1, kill: opp, gnss_dropout: true}\n").find("exactly one of"), std::string::npos);
+  EXPECT_NE(error_of(base + "  - {at_s: 1, position_jump_m: [.nan, 0], for_s: 3}\n").find("finite"), std::string::npos);
+  EXPECT_NE(error_of(base + "  - {at_s: -1, kill: opp}\n").find("at_s"), std::string::npos);
+}
+
+TEST(ScenarioFile, FromTakesAnotherScenarioAndOverridesNameFaultsAndCriteria) {
+  const auto dir = std::filesystem::path(::testing::TempDir()) / "scenario_from";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "base.yaml") << kMinimal;
+  std::ofstream(dir / "derived.yaml") << "name: d\nfrom: base.yaml\ntime_limit_s: 500\nfaults: [{at_s: 9, kill: opp}]\n"
+                                         "criteria: {goal: false}\nparams: {opp: {plan.seed: 3}}\n";
+  const sr::Scenario s = sr::load_scenario((dir / "derived.yaml").string());
+  EXPECT_EQ(s.name, "d");
+  EXPECT_EQ(s.time_limit, 500.0);
+  EXPECT_DOUBLE_EQ(s.safety_distance, 1000.0);  // the base's
+  EXPECT_FALSE(s.criteria.goal_required);
+  EXPECT_EQ(s.params.at("opp").at("replan.period"), "15");  // the base's parameters stay
+  EXPECT_EQ(s.params.at("opp").at("plan.seed"), "3");
+  ASSERT_EQ(s.faults.size(), 1u);
+  std::ofstream(dir / "bad.yaml") << "name: b\nfrom: nowhere.yaml\n";
+  try {
+    sr::load_scenario((dir / "bad.yaml").string());
+    FAIL() << "accepted a missing base";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no such scenario file"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "bad2.yaml") << "name: b\nfrom: base.yaml\nworld: {}\n";
+  EXPECT_THROW(sr::load_scenario((dir / "bad2.yaml").string()), std::runtime_error);
 }

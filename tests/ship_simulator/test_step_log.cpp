@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "mpgc/ship_simulator/sensor_faults.hpp"
 #include "mpgc/ship_simulator/step_log.hpp"
 #include "mpgc/ship_simulator/world.hpp"
 #include "mpgc/testing.hpp"
@@ -85,4 +86,35 @@ TEST(StepLog, AJournalOfAnotherRunIsRefusedByName) {
   }
   std::remove(path.c_str());
   EXPECT_THROW(sim::StepLog("/nonexistent-dir/journal"), std::runtime_error);
+}
+
+TEST(SensorFaults, OutageDropoutAndJumpChangeOnlyTheirWindow) {
+  sim::SensorFaults f;
+  f.add({sim::SensorFaults::Kind::kAisOutage, 10, 20, 257000001});
+  f.add({sim::SensorFaults::Kind::kGnssDropout, 30, 40});
+  f.add({sim::SensorFaults::Kind::kPositionJump, 50, 60, 0, 200.0, -50.0});
+  EXPECT_THROW(f.add({sim::SensorFaults::Kind::kGnssDropout, 5, 5}), std::invalid_argument);
+  EXPECT_THROW(f.add({sim::SensorFaults::Kind::kPositionJump, 0, 5, 0, std::nan(""), 0}), std::invalid_argument);
+  auto outputs = [] {
+    sim::SensorOutputs o;
+    o.nav = sim::NavMeasurement{1, 2, 0, 0, 5, 0};
+    o.ais.push_back({257000001, 0, 0, 0, 0, 0, 0, 0, 0});
+    o.ais.push_back({257000002, 0, 0, 0, 0, 0, 0, 0, 0});
+    return o;
+  };
+  auto o = outputs();
+  EXPECT_EQ(f.apply(9, &o), 0);
+  o = outputs();
+  EXPECT_EQ(f.apply(10, &o), 1);
+  ASSERT_EQ(o.ais.size(), 1u);
+  EXPECT_EQ(o.ais[0].mmsi, 257000002u);
+  o = outputs();
+  EXPECT_EQ(f.apply(35, &o), 1);
+  EXPECT_FALSE(o.nav.has_value());
+  o = outputs();
+  EXPECT_EQ(f.apply(59, &o), 1);
+  EXPECT_EQ(o.nav->x, 201.0);
+  EXPECT_EQ(o.nav->y, -48.0);
+  o = outputs();
+  EXPECT_EQ(f.apply(60, &o), 0);  // the window is [from, until)
 }
