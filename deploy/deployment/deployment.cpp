@@ -26,12 +26,22 @@ uint32_t ipv4(const std::string& s) {
   return ntohl(a.s_addr);
 }
 
+// std::stod of a string the caller's regex made all digits: too many of them (1e310) throw
+// std::out_of_range, which is the caller's documented std::invalid_argument here.
+double decimal(const std::string& digits, const std::string& what) {
+  try {
+    return std::stod(digits);
+  } catch (const std::out_of_range&) {
+    throw std::invalid_argument(what + ": the number is out of range");
+  }
+}
+
 double number_with_unit(const std::string& word, const std::string& unit, const std::string& what) {
   static const std::regex re(R"(^([0-9]+(\.[0-9]+)?)([a-z%]*)$)");
   std::smatch m;
   if (!std::regex_match(word, m, re) || m[3].str() != unit)
     throw std::invalid_argument(what + " '" + word + "' is not a number in " + unit);
-  return std::stod(m[1].str());
+  return decimal(m[1].str(), what + " '" + word + "'");
 }
 
 std::string num(double v) {
@@ -78,7 +88,7 @@ LinkCut parse_cut(const std::string& spec) {
   std::smatch m;
   if (!std::regex_match(spec, m, re))
     throw std::invalid_argument("cut '" + spec + "': expected HOST@T+D (T simulated seconds, D wall seconds), e.g. autonomy@600+5");
-  LinkCut c{m[1].str(), std::stod(m[2].str()), std::stod(m[4].str())};
+  LinkCut c{m[1].str(), decimal(m[2].str(), "cut '" + spec + "'"), decimal(m[4].str(), "cut '" + spec + "'")};
   if (c.duration_s <= 0.0 || c.duration_s > 3600.0) throw std::invalid_argument("cut '" + spec + "': D must be in (0, 3600] s");
   return c;
 }
