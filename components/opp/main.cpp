@@ -36,6 +36,7 @@ struct NodeParams {
   double arrival_radius = 100;   // [m] no more plans once the own ship is this close to the goal
   double default_speed = 5;      // [m/s] when neither the goal nor the own state gives a speed
   double max_state_age = 5;      // [s] own state older than this is not planned from
+  double max_obstacle_age = 10;  // [s] moving obstacles older than this are not planned with
   bool warm_start = true;        // seed the tree with the previous path of the same goal
   bool pin_encounters = true;    // hold each leg to the obligation fixed at the encounter's start
   double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
@@ -79,6 +80,9 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("plan.arrival_radius", &p.arrival_radius, 100.0, "m", 0.0, 1e5, "stop planning this close to the goal");
   ps.add("plan.default_speed", &p.default_speed, 5.0, "m/s", 0.1, 50.0, "planned speed when no other is known");
   ps.add("plan.max_state_age", &p.max_state_age, 5.0, "s", 0.1, 600.0, "older own states are not planned from");
+  ps.add("plan.max_obstacle_age", &p.max_obstacle_age, 10.0, "s", 0.1, 600.0,
+         "moving obstacles older than this (obstacle_manager publishes every 0.5 s) are not extrapolated: no plan "
+         "until fresh ones come (guidance keeps the last plan, then slows to steerage speed)");
   ps.add("plan.warm_start", &p.warm_start, true, "re-use the previous path of the same goal");
   ps.add("plan.pin_encounters", &p.pin_encounters, true,
          "fix each target's COLREG obligation when the risk of collision appears (encounters.hpp); false: per leg (§5)");
@@ -181,9 +185,10 @@ int main(int argc, char** argv) {
       uint32_t warm_goal = 0;
       std::vector<opp::Vec2> last_path;
       opp::EncounterMemory encounters;
+      std::string stale;  // why no plan is made now ("" = inputs fresh)
       mpgc::rt::WallClock wall;  // planning time and budget are wall time, also on simulated time
     };
-    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}});
+    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {}});
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
     auto* enc_out = &c->publisher<msg::EncounterList>(mpgc::topics::kPlanEncounters, mpgc::dds::QosProfile::latched());
@@ -228,10 +233,23 @@ int main(int argc, char** argv) {
       const msg::NavState& own = *st->own;
       const msg::MissionGoal& goal = *st->goal;
       const double own_age = static_cast<double>(now_ns - own.header.stamp_ns) * 1e-9;
+      // Stale inputs: no plan rather than one against a picture that no longer holds; guidance
+      // keeps the last plan while it is fresh, then slows down (its README), and health says why.
+      std::string stale;
       if (own_age > p.max_state_age) {
         c->count("skipped.stale_own_state");
-        return;
+        stale = "own-ship state " + std::to_string(static_cast<int>(own_age)) + " s old";
+      } else if (st->moving && (now_ns - st->moving->t_valid_ns) * 1e-9 > p.max_obstacle_age) {
+        c->count("skipped.stale_obstacles");
+        stale = "moving obstacles " + std::to_string(static_cast<int>((now_ns - st->moving->t_valid_ns) * 1e-9)) + " s old";
       }
+      if (stale != st->stale) {
+        st->stale = stale;
+        if (!stale.empty()) c->log().warn("not planning: {}", stale);
+        c->set_health(stale.empty() ? msg::HealthState::HEALTH_OK : msg::HealthState::HEALTH_DEGRADED,
+                      stale.empty() ? "" : "not planning: " + stale);
+      }
+      if (!stale.empty()) return;
       // Targets at `now` by eq. 3.
       std::vector<opp::Target> targets;
       if (st->moving) {
