@@ -34,6 +34,7 @@
 #include "mpgc/msg/obstacles.hpp"
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/runtime/component.hpp"
+#include "mpgc/runtime/health_board.hpp"
 #include "mpgc/scenario_runner/evaluation.hpp"
 #include "mpgc/scenario_runner/report.hpp"
 #include "mpgc/scenario_runner/scenario.hpp"
@@ -345,16 +346,7 @@ pid_t component_pid(pid_t launcher, const std::string& component) {
   return -1;
 }
 
-const char* health_name(msg::HealthState h) {
-  switch (h) {
-    case msg::HealthState::HEALTH_STARTING: return "starting";
-    case msg::HealthState::HEALTH_OK: return "ok";
-    case msg::HealthState::HEALTH_DEGRADED: return "degraded";
-    case msg::HealthState::HEALTH_ERROR: return "error";
-    case msg::HealthState::HEALTH_STOPPING: return "stopping";
-  }
-  return "?";
-}
+
 
 struct Outcome {
   bool ran = false;
@@ -512,42 +504,55 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   // Only a run with faults has the fault topic (a secured bus grants it to nobody).
   dds::Writer<msg::FaultCommand>* fault_w =
       s.faults.empty() ? nullptr : &c.publisher<msg::FaultCommand>(mpgc::topics::kFaults, dds::QosProfile::command(16));
-  struct Seen {
-    uint32_t seq = 0;
-    msg::HealthState state = msg::HealthState::HEALTH_STARTING;
-    std::string detail;
-  };
-  std::map<std::string, Seen> health;
+  // The system's health (one view, mpgc::rt::HealthBoard on the wall clock): a component's change
+  // to down, stale, degraded or back is printed; a new incarnation (its health seq starts again)
+  // marks the recovery of a killed or stopped one.
+  std::mutex health_mutex;  // the board: the executor feeds it, the wall-clock watchdog reads it
+  rt::HealthBoard board;
+  std::map<std::string, uint32_t> health_seq;
+  auto wall_ns = [] { return std::chrono::duration_cast<std::chrono::nanoseconds>(Steady::now().time_since_epoch()).count(); };
   auto say = [&](const std::string& what) {
     if (!o.quiet) std::printf("  %-28s sim %6.0f s  %s\n", s.name.c_str(), c.clock().now_s(), what.c_str());
     std::fflush(stdout);
   };
+  std::map<std::string, rt::Status> said;  // "up" is news only after something else was said
+  auto print_health_changes = [&] {  // health_mutex held
+    for (const auto& v : board.changes(wall_ns())) {
+      if (!v.expected || v.status == rt::Status::kStarting) continue;
+      const auto before = said.find(v.name);
+      if (v.status == rt::Status::kUp && (before == said.end() || before->second == rt::Status::kUp)) continue;
+      said[v.name] = v.status;
+      say("health: " + v.name + " " + rt::to_string(v.status) + (v.detail.empty() ? "" : ": " + v.detail));
+    }
+  };
+  {
+    std::lock_guard<std::mutex> g(health_mutex);
+    for (const char* n : {"ship_simulator", "situational_awareness", "obstacle_manager", "opp", "guidance_control"})
+      board.expect(n, wall_ns());
+    board.changes(wall_ns());  // nothing to say before the start
+  }
   c.subscribe<msg::ComponentHealth>(mpgc::topics::kHealth, dds::QosProfile::latched(), [&](const msg::ComponentHealth& h) {
     const double now = c.clock().now_s();
-    const bool known = health.count(h.component) > 0;
-    Seen& seen = health[h.component];
-    const bool restarted = known && h.header.seq < seen.seq;
-    if (restarted) say("health: " + h.component + " is back (a new process)");
+    const auto seq = health_seq.find(h.component);
+    const bool restarted = seq != health_seq.end() && h.header.seq < seq->second;
+    health_seq[h.component] = h.header.seq;
     {
-      std::lock_guard<std::mutex> g(fault_mutex);
-      for (auto& f : run.faults)
-        if (f.component == h.component && std::isfinite(f.t) && !std::isfinite(f.t_recovered)) {
-          const bool was_stop = std::any_of(stopped.begin(), stopped.end(), [&](const Stopped& x) {
-            return x.continued && &run.faults[x.fault] == &f;
-          });
-          if (restarted || was_stop) {
-            f.t_recovered = now;
-            f.wall_recovery = std::chrono::duration<double>(Steady::now() - fault_wall[&f - run.faults.data()]).count();
-          }
-        }
+      std::lock_guard<std::mutex> g(health_mutex);
+      if (restarted) board.process_started(h.component, wall_ns()), say("health: " + h.component + " is back (a new process)");
+      board.sample(h, wall_ns());
+      print_health_changes();
     }
-    if (!known || h.state != seen.state || h.detail != seen.detail)
-      if (known || h.state != msg::HealthState::HEALTH_STARTING)
-        if (h.state != msg::HealthState::HEALTH_OK || seen.state != msg::HealthState::HEALTH_STARTING)
-          say("health: " + h.component + " " + health_name(h.state) + (h.detail.empty() ? "" : ": " + h.detail));
-    seen.seq = h.header.seq;
-    seen.state = h.state;
-    seen.detail = h.detail;
+    std::lock_guard<std::mutex> g(fault_mutex);
+    for (auto& f : run.faults)
+      if (f.component == h.component && std::isfinite(f.t) && !std::isfinite(f.t_recovered)) {
+        const bool was_stop = std::any_of(stopped.begin(), stopped.end(), [&](const Stopped& x) {
+          return x.continued && &run.faults[x.fault] == &f;
+        });
+        if (restarted || was_stop) {
+          f.t_recovered = now;
+          f.wall_recovery = std::chrono::duration<double>(Steady::now() - fault_wall[&f - run.faults.data()]).count();
+        }
+      }
   });
   // Injects the faults that are due at simulated time t (the record timer's).
   auto inject_faults = [&](double t) {
@@ -571,6 +576,10 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
         }
         kill(pid, f.kind == sr::Fault::Kind::kKill ? SIGKILL : SIGSTOP);
         fault_wall[next_fault] = Steady::now();
+        if (f.kind == sr::Fault::Kind::kKill) {
+          std::lock_guard<std::mutex> hg(health_mutex);
+          board.process_gone(f.component, "killed (fault injected)", wall_ns());
+        }
         if (f.kind == sr::Fault::Kind::kStop) {
           const bool wall = f.component == "ship_simulator";
           stopped.push_back({pid, next_fault, t + f.duration_s,
@@ -695,6 +704,10 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
             run.faults[k.fault].t_end = c.clock().now_s();
             last_progress = Steady::now();  // the stalled clock was the stop's doing
           }
+      }
+      {
+        std::lock_guard<std::mutex> g(health_mutex);
+        print_health_changes();  // stale ones, which no sample announces
       }
       int status = 0;
       if (waitpid(launcher, &status, WNOHANG) == launcher) {
