@@ -10,8 +10,8 @@ PACKAGES=(
   cyclonedds-dev cyclonedds-tools
   libeigen3-dev libfcl-dev libspdlog-dev libyaml-cpp-dev libcli11-dev libnanoflann-dev
   libgeographiclib-dev libgdal-dev libompl-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev
+  # tests and benchmarks; clang and libFuzzer for the long fuzz runs (tests/fuzz/README.md)
+  libgtest-dev libgmock-dev clang libfuzzer-14-dev
   # multi-host tests: network namespaces, loss and delay (iptables + an NFQUEUE delayer: this kernel
   # has no netem), packet captures; containers (podman on runc, a base image made with debootstrap);
   # DDS Security (openssl makes and signs the certificates and documents)

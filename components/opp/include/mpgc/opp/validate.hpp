@@ -1,0 +1,49 @@
+// What opp refuses on its input topics, as functions of the message (for the DDS side only: a
+// component main that links mpgc_msgs, and the fuzz targets in tests/fuzz/). Each returns why a
+// sample is unusable, or "" to take it: the validator argument of Component::subscribe.
+// Moved verbatim from components/opp/main.cpp (check_nav, check_goal, check_moving, finite2).
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "mpgc/msg/nav.hpp"
+#include "mpgc/msg/obstacles.hpp"
+#include "mpgc/msg/plan.hpp"
+
+namespace mpgc::opp {
+
+inline bool finite2(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
+
+// nav/own_state: position and heading valid and finite (the start of every plan).
+inline std::string check_nav(const msg::NavState& s) {
+  const uint32_t need = msg::NAV_POSITION_VALID | msg::NAV_HEADING_VALID;
+  if ((s.valid_mask & need) != need) return "position or heading flagged invalid";
+  if (!finite2(s.x, s.y) || !std::isfinite(s.heading)) return "non-finite position or heading";
+  return "";
+}
+
+// plan/goal: a finite goal, a heading that is NaN (any) or finite with a tolerance, speeds and
+// distances finite and >= 0.
+inline std::string check_goal(const msg::MissionGoal& g) {
+  if (!finite2(g.x, g.y)) return "non-finite goal position";
+  if (std::isinf(g.heading)) return "infinite goal heading (NaN means any)";
+  if (std::isfinite(g.heading) && !(g.heading_tolerance >= 0 && std::isfinite(g.heading_tolerance)))
+    return "heading_tolerance must be finite and >= 0";
+  if (!(std::isfinite(g.cruise_speed) && g.cruise_speed >= 0)) return "cruise_speed must be finite and >= 0";
+  if (!(std::isfinite(g.safety_distance) && g.safety_distance >= 0)) return "safety_distance must be finite and >= 0";
+  return "";
+}
+
+// obstacles/moving: at most 10000 obstacles, each with a finite position and velocity.
+inline std::string check_moving(const msg::MovingObstacles& m) {
+  if (m.obstacles.size() > 10000) return "more than 10000 moving obstacles";
+  for (size_t i = 0; i < m.obstacles.size(); ++i) {
+    const auto& o = m.obstacles[i];
+    if (!finite2(o.x, o.y) || !finite2(o.vx, o.vy))
+      return "obstacle " + std::to_string(i) + " (id " + std::to_string(o.id) + ") has a non-finite position or velocity";
+  }
+  return "";
+}
+
+}  // namespace mpgc::opp
