@@ -11,6 +11,7 @@
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
+#include "mpgc/msg/plan.hpp"
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/obstacle_manager/chart.hpp"
 #include "mpgc/obstacle_manager/manager.hpp"
@@ -211,6 +212,17 @@ int main(int argc, char** argv) {
           if (!(s.valid_mask & msg::NAV_POSITION_VALID)) return "position not valid";
           if (!std::isfinite(s.x) || !std::isfinite(s.y)) return "position not finite";
           return "";
+        });
+
+    // The region reaches the goal: beyond the published region the planner sees unknown water.
+    c->subscribe<msg::MissionGoal>(
+        mpgc::topics::kGoal, mpgc::dds::QosProfile::latched(),
+        [st, publish_fixed](const msg::MissionGoal& g) {
+          st->region.set_goal({g.x, g.y});
+          if (st->own && st->region.needs_update(*st->own)) publish_fixed(*st->own);
+        },
+        [](const msg::MissionGoal& g) -> std::string {
+          return std::isfinite(g.x) && std::isfinite(g.y) ? "" : "goal position not finite";
         });
 
     c->subscribe<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(), [c, st](const msg::TrackList& l) {
