@@ -10,12 +10,15 @@
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/topics.hpp"
+#include "mpgc/guidance_control/validate.hpp"
 
 namespace gc = mpgc::guidance_control;
 namespace msg = mpgc::msg;
 using mpgc::dds::QosProfile;
 
 namespace {
+
+using mpgc::guidance_control::to_plan;
 
 struct Params {
   gc::GuidanceControlParams gc;
@@ -75,23 +78,6 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
          "own state older than this -> safe mode, rudder amidships, rpm reduced to safe_speed's");
   ps.add("safe_speed", &p.gc.safe_speed, d.safe_speed, "m/s", 0.1, 30.0, "speed in safe mode (heading held)");
   ps.add("arrival_speed", &p.gc.arrival_speed, d.arrival_speed, "m/s", 0.0, 30.0, "speed after the last waypoint");
-}
-
-gc::PlanInput to_plan(const msg::Path& m) {
-  gc::PlanInput p;
-  p.plan_id = m.plan_id;
-  switch (m.status) {
-    case msg::PlanStatus::PLAN_OK: p.kind = gc::PlanKind::Ok; break;
-    case msg::PlanStatus::PLAN_RELAXED: p.kind = gc::PlanKind::Relaxed; break;
-    case msg::PlanStatus::PLAN_NO_PATH: p.kind = gc::PlanKind::NoPath; break;
-    default: p.kind = gc::PlanKind::InvalidInput; break;
-  }
-  p.reason = m.reason;
-  p.stamp = m.header.stamp_ns > 0 ? static_cast<double>(m.header.stamp_ns) * 1e-9 : std::nan("");
-  p.effective = m.effective_ns > 0 ? static_cast<double>(m.effective_ns) * 1e-9 : 0.0;
-  p.waypoints.reserve(m.waypoints.size());
-  for (const auto& w : m.waypoints) p.waypoints.push_back({w.x, w.y, w.speed});
-  return p;
 }
 
 msg::GuidanceMode to_msg(gc::Mode m) {

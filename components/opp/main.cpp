@@ -18,6 +18,7 @@
 #include "mpgc/opp/memory.hpp"
 #include "mpgc/opp/planner.hpp"
 #include "mpgc/opp/replan.hpp"
+#include "mpgc/opp/validate.hpp"
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/topics.hpp"
 
@@ -101,35 +102,6 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
          "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
 }
 
-bool finite2(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
-
-std::string check_nav(const msg::NavState& s) {
-  const uint32_t need = msg::NAV_POSITION_VALID | msg::NAV_HEADING_VALID;
-  if ((s.valid_mask & need) != need) return "position or heading flagged invalid";
-  if (!finite2(s.x, s.y) || !std::isfinite(s.heading)) return "non-finite position or heading";
-  return "";
-}
-
-std::string check_goal(const msg::MissionGoal& g) {
-  if (!finite2(g.x, g.y)) return "non-finite goal position";
-  if (std::isinf(g.heading)) return "infinite goal heading (NaN means any)";
-  if (std::isfinite(g.heading) && !(g.heading_tolerance >= 0 && std::isfinite(g.heading_tolerance)))
-    return "heading_tolerance must be finite and >= 0";
-  if (!(std::isfinite(g.cruise_speed) && g.cruise_speed >= 0)) return "cruise_speed must be finite and >= 0";
-  if (!(std::isfinite(g.safety_distance) && g.safety_distance >= 0)) return "safety_distance must be finite and >= 0";
-  return "";
-}
-
-std::string check_moving(const msg::MovingObstacles& m) {
-  if (m.obstacles.size() > 10000) return "more than 10000 moving obstacles";
-  for (size_t i = 0; i < m.obstacles.size(); ++i) {
-    const auto& o = m.obstacles[i];
-    if (!finite2(o.x, o.y) || !finite2(o.vx, o.vy))
-      return "obstacle " + std::to_string(i) + " (id " + std::to_string(o.id) + ") has a non-finite position or velocity";
-  }
-  return "";
-}
-
 msg::PlanStatus to_msg(opp::Status s) {
   switch (s) {
     case opp::Status::kOk: return msg::PlanStatus::PLAN_OK;
@@ -211,11 +183,11 @@ int main(int argc, char** argv) {
     }
 
     c->subscribe<msg::NavState>(mpgc::topics::kOwnState, mpgc::dds::QosProfile::state(),
-                                [st](const msg::NavState& s) { st->own = s; }, check_nav);
+                                [st](const msg::NavState& s) { st->own = s; }, opp::check_nav);
     c->subscribe<msg::MissionGoal>(mpgc::topics::kGoal, mpgc::dds::QosProfile::latched(),
-                                   [st](const msg::MissionGoal& g) { st->goal = g; }, check_goal);
+                                   [st](const msg::MissionGoal& g) { st->goal = g; }, opp::check_goal);
     c->subscribe<msg::MovingObstacles>(mpgc::topics::kMovingObstacles, mpgc::dds::QosProfile::state(),
-                                       [st](const msg::MovingObstacles& m) { st->moving = m; }, check_moving);
+                                       [st](const msg::MovingObstacles& m) { st->moving = m; }, opp::check_moving);
     c->subscribe<msg::FixedObstacles>(
         mpgc::topics::kFixedObstacles, mpgc::dds::QosProfile::latched(), [c, st](const msg::FixedObstacles& m) {
           try {
@@ -395,8 +367,9 @@ int main(int argc, char** argv) {
       mm.header = out.header;
       mm.goal_id = mem.goal_id;
       mm.plan_id = mem.plan_id;
-      for (const auto& r : mem.pinned)
-        mm.pinned.push_back({r.id, static_cast<uint32_t>(r.e.obligation), r.e.course0, r.e.track_side, r.e.target_course, r.range0});
+      for (const auto& pin : mem.pinned)
+        mm.pinned.push_back({pin.id, static_cast<uint32_t>(pin.e.obligation), pin.e.course0, pin.e.track_side,
+                             pin.e.target_course, pin.range0});
       memory_out->write(mm);
       if (!p.memory_file.empty()) {
         try {

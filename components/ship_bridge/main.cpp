@@ -17,6 +17,7 @@
 #include "mpgc/ship_bridge/bridge.hpp"
 #include "mpgc/ship_bridge/gpsd_client.hpp"
 #include "mpgc/topics.hpp"
+#include "mpgc/ship_bridge/validate.hpp"
 
 namespace sb = mpgc::ship_bridge;
 namespace msg = mpgc::msg;
@@ -128,9 +129,7 @@ int main(int argc, char** argv) {
           st->cmd = a;
           st->cmd_ns = c.now_ns();
         },
-        [](const msg::ActuatorCommand& a) {
-          return std::isfinite(a.rudder) && std::isfinite(a.propeller_rpm) ? "" : "rudder or propeller_rpm is not finite";
-        });
+        mpgc::ship_bridge::check_command);
 
     const auto apply_lines = [&c, nav](const std::vector<std::string>& lines, const char* input) {
       for (const auto& l : lines) {

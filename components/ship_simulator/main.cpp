@@ -19,6 +19,7 @@
 #include "mpgc/ship_simulator/step_log.hpp"
 #include "mpgc/ship_simulator/world.hpp"
 #include "mpgc/topics.hpp"
+#include "mpgc/ship_simulator/validate.hpp"
 
 namespace sim = mpgc::ship_simulator;
 namespace msg = mpgc::msg;
@@ -27,6 +28,8 @@ namespace rt = mpgc::rt;
 namespace topics = mpgc::topics;
 
 namespace {
+
+using mpgc::ship_simulator::check_command;
 
 struct Params {
   std::string world_file;
@@ -99,15 +102,6 @@ struct Params {
 
 msg::ShipTruth to_msg(const sim::TruthShip& t) {
   return {t.id, t.mmsi, t.x, t.y, t.heading, t.cog, t.sog, t.u, t.v, t.r, t.length, t.beam};
-}
-
-// Why an actuator command is unusable, or "" (design.md: reject, count, keep the last valid one).
-// Only a non-finite order is refused: one beyond a limit is saturated (the gear stops at its limit)
-// and counted where it is taken.
-std::string check_command(const msg::ActuatorCommand& c) {
-  if (!std::isfinite(c.rudder)) return "rudder is not finite";
-  if (!std::isfinite(c.propeller_rpm)) return "propeller_rpm is not finite";
-  return "";
 }
 
 }  // namespace
@@ -390,14 +384,14 @@ int main(int argc, char** argv) {
       // Then resend the current Clock when an ack (or the Clock itself) was lost.
       c.every(std::min(0.05, p.ack_timeout / 2), [&, st, barrier, advance, drop_missing] {
         if (!st->started) {
-          if (acks.liveliness().alive_count < static_cast<int32_t>(barrier->size())) return;
+          if (acks.liveliness().alive_count < static_cast<uint32_t>(barrier->size())) return;
           if (st->ready_wall == 0) st->ready_wall = c.now_ns();
           if (c.now_ns() - st->ready_wall < static_cast<int64_t>(p.start_settle * 1e9)) return;
           return advance();
         }
         const int64_t waited = c.now_ns() - st->step_wall;
         if (waited > static_cast<int64_t>(p.absent_after * 1e9) &&
-            acks.liveliness().alive_count < static_cast<int32_t>(barrier->present()))
+            acks.liveliness().alive_count < static_cast<uint32_t>(barrier->present()))
           return drop_missing("liveliness lost");
         if (p.hang_timeout > 0 && waited > static_cast<int64_t>(p.hang_timeout * 1e9))
           return drop_missing("no ack within lockstep.hang_timeout");

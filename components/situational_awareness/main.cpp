@@ -13,6 +13,7 @@
 #include "mpgc/situational_awareness/situation.hpp"
 #include "mpgc/situational_awareness/tracker.hpp"
 #include "mpgc/topics.hpp"
+#include "mpgc/situational_awareness/validate.hpp"
 
 namespace sa = mpgc::sa;
 namespace cr = mpgc::colreg;
@@ -20,6 +21,9 @@ namespace msg = mpgc::msg;
 namespace geo = mpgc::geo;
 
 namespace {
+
+using mpgc::sa::check_nav;
+using mpgc::sa::to_input;
 
 struct Params {
   double period = 0.5;          // [s] sa/tracks and sa/encounters period
@@ -65,19 +69,6 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("colreg.tcpa_max", &p.colreg.tcpa_max, 1800.0, "s", 1.0, inf, "risk if CPA sooner");
 }
 
-sa::AisInput to_input(const msg::AisReport& r) {
-  // The transmitter's fix time when given, else the reception stamp.
-  const int64_t t = r.report_time_ns > 0 ? r.report_time_ns : r.header.stamp_ns;
-  return {r.mmsi, t, r.lat, r.lon, r.cog, r.sog, r.length};
-}
-
-sa::RadarScanInput to_input(const msg::RadarScan& s) {
-  sa::RadarScanInput in{s.header.stamp_ns, s.antenna_x, s.antenna_y, s.max_range, {}};
-  in.contacts.reserve(s.contacts.size());
-  for (const auto& c : s.contacts) in.contacts.push_back({c.range, c.bearing, c.range_std, c.bearing_std});
-  return in;
-}
-
 msg::Track to_msg(const sa::Track& t, int64_t now_ns) {
   msg::Track m;
   m.id = t.id;
@@ -118,15 +109,6 @@ msg::OwnRole to_msg(cr::Role r) {
     case cr::Role::kNone: break;
   }
   return msg::OwnRole::ROLE_NONE;
-}
-
-std::string check_nav(const msg::NavState& s) {
-  if (!(s.valid_mask & msg::NAV_POSITION_VALID)) return "position not valid";
-  if (!std::isfinite(s.x) || !std::isfinite(s.y)) return "x/y not finite";
-  if ((s.valid_mask & msg::NAV_VELOCITY_VALID) && (!std::isfinite(s.sog) || !std::isfinite(s.cog) || s.sog < 0))
-    return "sog/cog not finite";
-  if ((s.valid_mask & msg::NAV_HEADING_VALID) && !std::isfinite(s.heading)) return "heading not finite";
-  return {};
 }
 
 }  // namespace

@@ -25,6 +25,7 @@ inline PlanInput to_plan(const msg::Path& m) {
   }
   p.reason = m.reason;
   p.stamp = m.header.stamp_ns > 0 ? static_cast<double>(m.header.stamp_ns) * 1e-9 : std::nan("");
+  p.effective = m.effective_ns > 0 ? static_cast<double>(m.effective_ns) * 1e-9 : 0.0;
   p.waypoints.reserve(m.waypoints.size());
   for (const auto& w : m.waypoints) p.waypoints.push_back({w.x, w.y, w.speed});
   return p;

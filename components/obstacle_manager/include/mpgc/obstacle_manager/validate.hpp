@@ -33,6 +33,7 @@ inline TargetState target_state(const msg::Track& t) {
   ts.var_x = t.cov[0];
   ts.var_y = t.cov[5];
   ts.length = t.length;
+  ts.since_update = t.since_update;
   ts.tentative = t.status == msg::TrackStatus::TRACK_TENTATIVE;
   ts.deleted = t.status == msg::TrackStatus::TRACK_DELETED;
   return ts;
