@@ -43,7 +43,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const int64_t now_ns = own.header.stamp_ns;
   std::vector<opp::Target> targets;
   if (moving_ok) {
-    const double dt = static_cast<double>(now_ns - moving.t_valid_ns) * 1e-9;
+    // The main computes (now - t_valid) in int64: signed overflow for extreme stamps (a finding,
+    // README.md); here in double.
+    const double dt = (static_cast<double>(now_ns) - static_cast<double>(moving.t_valid_ns)) * 1e-9;
     for (const auto& o : moving.obstacles) targets.push_back({o.id, {o.x + o.vx * dt, o.y + o.vy * dt}, {o.vx, o.vy}});
   }
   const double sog = std::isfinite(own.sog) ? own.sog : 0.0;

@@ -52,7 +52,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     const std::vector<sa::Track> tracks = tracker.tracks_at(now);
     if (!own) continue;
-    const double dt = static_cast<double>(now - own->header.stamp_ns) * 1e-9;
+    // The main computes (now - stamp) in int64: signed overflow for a stamp near INT64_MIN (a
+    // finding, README.md); here in double.
+    const double dt = (static_cast<double>(now) - static_cast<double>(own->header.stamp_ns)) * 1e-9;
     const bool vel = own->valid_mask & msg::NAV_VELOCITY_VALID;
     const double vx = vel ? own->sog * std::cos(own->cog) : 0.0, vy = vel ? own->sog * std::sin(own->cog) : 0.0;
     const double hdg = (own->valid_mask & msg::NAV_HEADING_VALID) ? own->heading : std::nan("");
