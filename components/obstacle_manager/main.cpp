@@ -11,12 +11,10 @@
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
-#include "mpgc/msg/plan.hpp"
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/obstacle_manager/chart.hpp"
 #include "mpgc/obstacle_manager/manager.hpp"
 #include "mpgc/obstacle_manager/msg_convert.hpp"
-#include "mpgc/obstacle_manager/validate.hpp"
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/topics.hpp"
 
@@ -209,23 +207,31 @@ int main(int argc, char** argv) {
           }
           if (st->region.needs_update(*st->own)) publish_fixed(*st->own);
         },
-        om::check_nav);
-
-    // The region reaches the goal: beyond the published region the planner sees unknown water.
-    c->subscribe<msg::MissionGoal>(
-        mpgc::topics::kGoal, mpgc::dds::QosProfile::latched(),
-        [st, publish_fixed](const msg::MissionGoal& g) {
-          st->region.set_goal({g.x, g.y});
-          if (st->own && st->region.needs_update(*st->own)) publish_fixed(*st->own);
-        },
-        [](const msg::MissionGoal& g) -> std::string {
-          return std::isfinite(g.x) && std::isfinite(g.y) ? "" : "goal position not finite";
+        [](const msg::NavState& s) -> std::string {
+          if (!(s.valid_mask & msg::NAV_POSITION_VALID)) return "position not valid";
+          if (!std::isfinite(s.x) || !std::isfinite(s.y)) return "position not finite";
+          return "";
         });
 
     c->subscribe<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(), [c, st](const msg::TrackList& l) {
       std::vector<om::TargetState> targets;
       targets.reserve(l.tracks.size());
-      for (const auto& t : l.tracks) targets.push_back(om::target_state(t));
+      for (const auto& t : l.tracks) {
+        om::TargetState ts;
+        ts.id = t.id;
+        ts.mmsi = t.mmsi;
+        ts.x = t.x;
+        ts.y = t.y;
+        ts.vx = t.vx;
+        ts.vy = t.vy;
+        ts.var_x = t.cov[0];
+        ts.var_y = t.cov[5];
+        ts.length = t.length;
+        ts.since_update = t.since_update;
+        ts.tentative = t.status == msg::TrackStatus::TRACK_TENTATIVE;
+        ts.deleted = t.status == msg::TrackStatus::TRACK_DELETED;
+        targets.push_back(ts);
+      }
       const auto r = st->feed.receive(l.header.stamp_ns, targets, c->now_ns());
       if (r.deleted > 0) c->count("tracks_skipped_deleted", r.deleted);
       if (r.tentative > 0) c->count("tracks_skipped_tentative", r.tentative);

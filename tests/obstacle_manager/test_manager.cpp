@@ -68,22 +68,6 @@ TEST(Region, RepublishesAfterMovingFarEnoughOrChartChange) {
   EXPECT_FALSE(whole.needs_update({1e5, 1e5}));
 }
 
-// The planner counts water beyond the published region as unknown: the region reaches the goal.
-TEST(Region, ReachesTheGoalAndANewGoalIsANewRegion) {
-  om::RegionPolicy r({1000.0, 200.0});
-  r.publish({0, 0}, {});
-  r.set_goal({0, 0});  // first goal: a new region even where the old one covered it
-  EXPECT_TRUE(r.needs_update({0, 0}));
-  r.set_goal({5000, -3000});
-  const auto box = r.publish({0, 0}, {});
-  EXPECT_EQ(box.max_x, 6000.0);
-  EXPECT_EQ(box.min_y, -4000.0);
-  EXPECT_EQ(box.min_x, -1000.0);
-  EXPECT_EQ(box.max_y, 1000.0);
-  r.set_goal({5000, -3000});  // the same goal again: nothing to republish
-  EXPECT_FALSE(r.needs_update({0, 0}));
-}
-
 TEST(Moving, TracksBecomeObstaclesWithDomain) {
   om::DomainParams p;
   om::TargetState t;

@@ -79,18 +79,7 @@ BoxNE RegionPolicy::publish(PointNE own, const BoxNE& chart_bounds) {
   centre_ = own;
   dirty_ = false;
   if (whole_chart()) return chart_bounds;
-  const double h = p_.half_size;
-  BoxNE b{own.x - h, own.y - h, own.x + h, own.y + h};
-  if (goal_)
-    b = {std::min(b.min_x, goal_->x - h), std::min(b.min_y, goal_->y - h), std::max(b.max_x, goal_->x + h),
-         std::max(b.max_y, goal_->y + h)};
-  return b;
-}
-
-void RegionPolicy::set_goal(PointNE goal) {
-  if (goal_ && goal_->x == goal.x && goal_->y == goal.y) return;
-  goal_ = goal;
-  dirty_ = true;
+  return {own.x - p_.half_size, own.y - p_.half_size, own.x + p_.half_size, own.y + p_.half_size};
 }
 
 void DomainParams::validate() const {

@@ -264,7 +264,10 @@ void GpsdClient::Impl::handle(std::vector<GpsdEvent>* out) {
     }
     if ((set & SPEED_SET) && std::isfinite(gd.fix.speed)) f.speed = gd.fix.speed;
     if ((set & TRACK_SET) && std::isfinite(gd.fix.track)) f.track_deg = gd.fix.track;
-    if ((set & TIME_SET) && gd.fix.time.tv_sec != 0)
+    // |tv_sec| below 9e9 s (year 2255): beyond it the nanoseconds overflow int64 (a TPV time in the
+    // year 3238 did, found by fuzz_gpsd_json); such a time counts as none.
+    if ((set & TIME_SET) && gd.fix.time.tv_sec != 0 && gd.fix.time.tv_sec > -9'000'000'000LL &&
+        gd.fix.time.tv_sec < 9'000'000'000LL)
       f.time_ns = static_cast<int64_t>(gd.fix.time.tv_sec) * 1000000000LL + gd.fix.time.tv_nsec;
     f.device = json_string(line, "device");
     if (!f.device.empty()) last_device = f.device;

@@ -22,9 +22,7 @@ namespace mpgc::obstacle_manager {
 void add_shapes(ChartBuilder& b, const std::string& spec);
 
 // When to publish which part of the fixed obstacles: a square of half side `half_size` around the
-// own ship, re-centred when the ship is farther than `republish_distance` from the last centre,
-// and around the mission's goal too: the planner counts water beyond the published region as
-// unknown, so the region must reach the goal.
+// own ship, re-centred when the ship is farther than `republish_distance` from the last centre.
 struct RegionParams {
   double half_size = 10000.0;           // [m] half side of the published square; 0 = whole chart
   double republish_distance = 2000.0;   // [m] re-centre after moving this far; < half_size
@@ -37,8 +35,6 @@ class RegionPolicy {
   // True when nothing was published yet, the ship left the republish circle, or the chart changed.
   bool needs_update(PointNE own) const;
   void chart_changed() { dirty_ = true; }
-  // The goal the region must also cover (a new goal means a new region).
-  void set_goal(PointNE goal);
   // The region to publish for the ship at `own`, and remember it as published.
   BoxNE publish(PointNE own, const BoxNE& chart_bounds);
   bool whole_chart() const { return p_.half_size == 0.0; }
@@ -46,7 +42,6 @@ class RegionPolicy {
  private:
   RegionParams p_;
   std::optional<PointNE> centre_;
-  std::optional<PointNE> goal_;
   bool dirty_ = true;
 };
 
