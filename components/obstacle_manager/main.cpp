@@ -15,6 +15,7 @@
 #include "mpgc/obstacle_manager/chart.hpp"
 #include "mpgc/obstacle_manager/manager.hpp"
 #include "mpgc/obstacle_manager/msg_convert.hpp"
+#include "mpgc/obstacle_manager/validate.hpp"
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/topics.hpp"
 
@@ -207,31 +208,12 @@ int main(int argc, char** argv) {
           }
           if (st->region.needs_update(*st->own)) publish_fixed(*st->own);
         },
-        [](const msg::NavState& s) -> std::string {
-          if (!(s.valid_mask & msg::NAV_POSITION_VALID)) return "position not valid";
-          if (!std::isfinite(s.x) || !std::isfinite(s.y)) return "position not finite";
-          return "";
-        });
+        om::check_nav);
 
     c->subscribe<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(), [c, st](const msg::TrackList& l) {
       std::vector<om::TargetState> targets;
       targets.reserve(l.tracks.size());
-      for (const auto& t : l.tracks) {
-        om::TargetState ts;
-        ts.id = t.id;
-        ts.mmsi = t.mmsi;
-        ts.x = t.x;
-        ts.y = t.y;
-        ts.vx = t.vx;
-        ts.vy = t.vy;
-        ts.var_x = t.cov[0];
-        ts.var_y = t.cov[5];
-        ts.length = t.length;
-        ts.since_update = t.since_update;
-        ts.tentative = t.status == msg::TrackStatus::TRACK_TENTATIVE;
-        ts.deleted = t.status == msg::TrackStatus::TRACK_DELETED;
-        targets.push_back(ts);
-      }
+      for (const auto& t : l.tracks) targets.push_back(om::target_state(t));
       const auto r = st->feed.receive(l.header.stamp_ns, targets, c->now_ns());
       if (r.deleted > 0) c->count("tracks_skipped_deleted", r.deleted);
       if (r.tentative > 0) c->count("tracks_skipped_tentative", r.tentative);

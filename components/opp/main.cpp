@@ -158,10 +158,9 @@ int main(int argc, char** argv) {
       std::vector<opp::Vec2> last_path;
       opp::EncounterMemory encounters;
       std::string stale;  // why no plan is made now ("" = inputs fresh)
-      std::optional<opp::Bounds> charted;  // the region the fixed obstacles were published for
       mpgc::rt::WallClock wall;  // planning time and budget are wall time, also on simulated time
     };
-    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {}, {}});
+    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {}});
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
     auto* enc_out = &c->publisher<msg::EncounterList>(mpgc::topics::kPlanEncounters, mpgc::dds::QosProfile::latched());
@@ -193,11 +192,6 @@ int main(int argc, char** argv) {
           try {
             st->fixed = std::make_shared<opp::ChartObstacles>(
                 std::make_shared<const om::FixedObstacleMap>(om::map_from_msg(m)));
-            // A chart describes its region only: beyond it the water is unknown, not free. (No
-            // chart at all is open water: the paper's scenarios 1 and 2.)
-            st->charted.reset();
-            if (!m.points.empty() || !m.polygons.empty())
-              st->charted = opp::Bounds{m.region_min_x, m.region_min_y, m.region_max_x, m.region_max_y};
             c->log().info("fixed obstacles v{}: {} points, {} polygons", m.version, m.points.size(), m.polygons.size());
           } catch (const std::exception& e) {
             c->reject(mpgc::topics::kFixedObstacles, e.what());
@@ -220,14 +214,6 @@ int main(int argc, char** argv) {
       } else if (st->moving && (now_ns - st->moving->t_valid_ns) * 1e-9 > p.max_obstacle_age) {
         c->count("skipped.stale_obstacles");
         stale = "moving obstacles " + std::to_string(static_cast<int>((now_ns - st->moving->t_valid_ns) * 1e-9)) + " s old";
-      } else if (st->charted) {
-        const opp::Bounds& r = *st->charted;
-        auto inside = [&r](double x, double y) { return x >= r.min_x && x <= r.max_x && y >= r.min_y && y <= r.max_y; };
-        if (!inside(own.x, own.y) || !inside(goal.x, goal.y)) {
-          c->count("skipped.beyond_chart");
-          stale = std::string(inside(own.x, own.y) ? "the goal" : "the own ship") +
-                  " is beyond the region the chart was published for (unknown water)";
-        }
       }
       if (stale != st->stale) {
         st->stale = stale;
@@ -263,11 +249,6 @@ int main(int argc, char** argv) {
       const double m = p.bounds_margin;
       pb.bounds = {std::min(pb.start.x, pb.goal.p.x) - m, std::min(pb.start.y, pb.goal.p.y) - m,
                    std::max(pb.start.x, pb.goal.p.x) + m, std::max(pb.start.y, pb.goal.p.y) + m};
-      if (st->charted) {  // inside it (checked above): sample no unknown water
-        const opp::Bounds& r = *st->charted;
-        pb.bounds = {std::max(pb.bounds.min_x, r.min_x), std::max(pb.bounds.min_y, r.min_y),
-                     std::min(pb.bounds.max_x, r.max_x), std::min(pb.bounds.max_y, r.max_y)};
-      }
       pb.fixed = st->fixed.get();
       pb.targets = targets;
       pb.colreg = goal.colreg;

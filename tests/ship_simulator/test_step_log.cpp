@@ -56,9 +56,13 @@ TEST(StepLog, AKilledSimulatorResumesTheWorldBitForBit) {
   for (int k = 900; k < 1000; ++k) {
     const auto a = uninterrupted.sense(), b = resumed.sense();
     ASSERT_EQ(a.nav.has_value(), b.nav.has_value());
-    if (a.nav) EXPECT_EQ(a.nav->x, b.nav->x) << "sensor noise stream at step " << k;
+    if (a.nav) {
+      EXPECT_EQ(a.nav->x, b.nav->x) << "sensor noise stream at step " << k;
+    }
     ASSERT_EQ(a.radar.has_value(), b.radar.has_value());
-    if (a.radar) EXPECT_EQ(a.radar->contacts.size(), b.radar->contacts.size());
+    if (a.radar) {
+      EXPECT_EQ(a.radar->contacts.size(), b.radar->contacts.size());
+    }
     log.append(order(k));
     uninterrupted.step(order(k)), resumed.step(order(k));
   }

@@ -27,6 +27,11 @@ CommandResult shell(const std::string& command);
 // A whole file ("" when it cannot be read).
 std::string read_file(const std::string& path);
 
+// Starts args[0] with args (posix_spawn, this environment); -1 when it cannot.
+pid_t spawn(const std::vector<std::string>& args);
+// The child's exit code; -2 when a signal ended it; -1 (after SIGKILL) when it outlived timeout_s.
+int wait_child(pid_t pid, double timeout_s);
+
 // A child process (a component under test): SIGTERM on destruction, SIGKILL after 5 s.
 class Process {
  public:

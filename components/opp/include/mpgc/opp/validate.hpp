@@ -27,6 +27,9 @@ inline std::string check_nav(const msg::NavState& s) {
 // distances finite and >= 0.
 inline std::string check_goal(const msg::MissionGoal& g) {
   if (!finite2(g.x, g.y)) return "non-finite goal position";
+  // The local NED frame is flat: a goal beyond 1000 km is not one to plan to (a fuzzed 1.1e16 m
+  // goal took 6 minutes and 5 GB in one plan).
+  if (std::hypot(g.x, g.y) > 1e6) return "goal more than 1000 km from the origin of the local frame";
   if (std::isinf(g.heading)) return "infinite goal heading (NaN means any)";
   if (std::isfinite(g.heading) && !(g.heading_tolerance >= 0 && std::isfinite(g.heading_tolerance)))
     return "heading_tolerance must be finite and >= 0";
