@@ -113,13 +113,15 @@ bool Tracker::check_time(int64_t stamp_ns, int64_t receive_ns, const char* what,
     refuse(why, w + ".bad_stamp", "stamp " + std::to_string(stamp_ns) + " ns is negative");
     return false;
   }
-  if (static_cast<double>(stamp_ns - receive_ns) * kNsToS > p_.max_future) {
-    refuse(why, w + ".future_stamp",
-           "stamp is " + num((stamp_ns - receive_ns) * kNsToS) + " s after its reception");
+  // Differences in double: int64 stamps from anywhere (a fuzzed -9.2e18 ns) must not overflow.
+  const double ahead = (static_cast<double>(stamp_ns) - static_cast<double>(receive_ns)) * kNsToS;
+  if (ahead > p_.max_future) {
+    refuse(why, w + ".future_stamp", "stamp is " + num(ahead) + " s after its reception");
     return false;
   }
-  if (have_time_ && static_cast<double>(now_ns_ - stamp_ns) * kNsToS > p_.max_lag) {
-    refuse(why, w + ".stale_stamp", "stamp is " + num((now_ns_ - stamp_ns) * kNsToS) + " s older than the newest");
+  const double behind = (static_cast<double>(now_ns_) - static_cast<double>(stamp_ns)) * kNsToS;
+  if (have_time_ && behind > p_.max_lag) {
+    refuse(why, w + ".stale_stamp", "stamp is " + num(behind) + " s older than the newest");
     return false;
   }
   return true;
