@@ -204,16 +204,16 @@ int main(int argc, char** argv) {
       const double now = static_cast<double>(now_ns) * 1e-9;
       const msg::NavState& own = *st->own;
       const msg::MissionGoal& goal = *st->goal;
-      const double own_age = static_cast<double>(now_ns - own.header.stamp_ns) * 1e-9;
+      const double own_age = mpgc::rt::seconds_between(now_ns, own.header.stamp_ns);
       // Stale inputs: no plan rather than one against a picture that no longer holds; guidance
       // keeps the last plan while it is fresh, then slows down (its README), and health says why.
       std::string stale;
       if (own_age > p.max_state_age) {
         c->count("skipped.stale_own_state");
         stale = "own-ship state " + std::to_string(static_cast<int>(own_age)) + " s old";
-      } else if (st->moving && (now_ns - st->moving->t_valid_ns) * 1e-9 > p.max_obstacle_age) {
+      } else if (st->moving && mpgc::rt::seconds_between(now_ns, st->moving->t_valid_ns) > p.max_obstacle_age) {
         c->count("skipped.stale_obstacles");
-        stale = "moving obstacles " + std::to_string(static_cast<int>((now_ns - st->moving->t_valid_ns) * 1e-9)) + " s old";
+        stale = fmt::format("moving obstacles {:.0f} s old", mpgc::rt::seconds_between(now_ns, st->moving->t_valid_ns));
       }
       if (stale != st->stale) {
         st->stale = stale;
@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
       // Targets at `now` by eq. 3.
       std::vector<opp::Target> targets;
       if (st->moving) {
-        const double dt = static_cast<double>(now_ns - st->moving->t_valid_ns) * 1e-9;
+        const double dt = mpgc::rt::seconds_between(now_ns, st->moving->t_valid_ns);
         for (const auto& o : st->moving->obstacles)
           targets.push_back({o.id, {o.x + o.vx * dt, o.y + o.vy * dt}, {o.vx, o.vy}});
       }

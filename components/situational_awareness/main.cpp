@@ -170,14 +170,14 @@ int main(int argc, char** argv) {
       for (const auto& t : tracks) tl.tracks.push_back(to_msg(t, now));
       tracks_out.write(tl);
       c.count("cycles");
-      const bool own_ok = own && (now - own->header.stamp_ns) * 1e-9 <= p.own_timeout;
+      const bool own_ok = own && mpgc::rt::seconds_between(now, own->header.stamp_ns) <= p.own_timeout;
       if (!own_ok) {
         c.set_health(msg::HealthState::HEALTH_DEGRADED, own ? "own state stale" : "no own state yet");
         return;
       }
       c.set_health(msg::HealthState::HEALTH_OK, "");
       // Own ship predicted to now at its velocity over ground.
-      const double dt = (now - own->header.stamp_ns) * 1e-9;
+      const double dt = mpgc::rt::seconds_between(now, own->header.stamp_ns);
       const bool vel = own->valid_mask & msg::NAV_VELOCITY_VALID;
       const double vx = vel ? own->sog * std::cos(own->cog) : 0.0, vy = vel ? own->sog * std::sin(own->cog) : 0.0;
       const double hdg = (own->valid_mask & msg::NAV_HEADING_VALID) ? own->heading : std::nan("");

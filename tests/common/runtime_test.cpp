@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <thread>
 
 #include <spdlog/sinks/null_sink.h>
@@ -179,6 +180,16 @@ TEST(Runtime, OnSimulatedTimeAPeersSampleOfAStepCountsFromTheNextTick) {
     EXPECT_EQ(seen[k].first, k) << "step " << k;
     EXPECT_EQ(seen[k].second, k + 1) << "step " << k;
   }
+}
+
+TEST(Runtime, SecondsBetweenStampsIsExactAndNeverOverflows) {
+  EXPECT_EQ(rt::seconds_between(3'000'000'001, 1'000'000'000), 2.000000001);
+  EXPECT_EQ(rt::seconds_between(-5, 5), -10e-9);
+  // A stamp off the bus at the int64 extremes: the int64 difference does not exist.
+  const int64_t lo = std::numeric_limits<int64_t>::min(), hi = std::numeric_limits<int64_t>::max();
+  EXPECT_NEAR(rt::seconds_between(1'000'000'000, lo), 9.223372037e9, 1.0);
+  EXPECT_NEAR(rt::seconds_between(lo, hi), -1.8446744074e10, 1.0);
+  EXPECT_TRUE(rt::seconds_between(hi, lo) > 0.0);
 }
 
 TEST(Runtime, ClockGoingBackwardsIsRejectedAndCounted) {

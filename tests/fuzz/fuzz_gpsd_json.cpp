@@ -10,7 +10,6 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -103,103 +102,6 @@ bool feed(FakeGpsd& g, const std::string& chunk, sb::NavFusion& nav, sb::AisAsse
 
 }  // namespace
 
-// A strict JSON check of one line: one object, nothing after it. libgps 3.22's gps_unpack loops
-// for ever inside gps_read on some malformed lines (two objects on one line, a broken AIS object;
-// found by this target, README.md "Findings", reproducers in tests/fuzz/known/), which would hang
-// the bridge's poll. gpsd itself only writes well-formed JSON, so the target passes lines that
-// start with '{' only when they are well-formed (their values, keys and nesting still fuzzed);
-// other lines go through as they are (raw NMEA, garbage: GpsdClient's own handling).
-class Json {
- public:
-  explicit Json(const std::string& s) : s_(s) {}
-  bool one_object() {
-    ws();
-    if (!object(0)) return false;
-    ws();
-    return i_ == s_.size();
-  }
-
- private:
-  bool object(int d) {
-    if (d > 32 || !eat('{')) return false;
-    ws();
-    if (eat('}')) return true;
-    for (;;) {
-      ws();
-      if (!string()) return false;
-      ws();
-      if (!eat(':') || !value(d)) return false;
-      ws();
-      if (eat('}')) return true;
-      if (!eat(',')) return false;
-    }
-  }
-  bool array(int d) {
-    if (d > 32 || !eat('[')) return false;
-    ws();
-    if (eat(']')) return true;
-    for (;;) {
-      if (!value(d)) return false;
-      ws();
-      if (eat(']')) return true;
-      if (!eat(',')) return false;
-    }
-  }
-  bool value(int d) {
-    ws();
-    if (i_ >= s_.size()) return false;
-    const char c = s_[i_];
-    if (c == '{') return object(d + 1);
-    if (c == '[') return array(d + 1);
-    if (c == '"') return string();
-    for (const char* w : {"true", "false", "null"})
-      if (s_.compare(i_, std::strlen(w), w) == 0) return (i_ += std::strlen(w)), true;
-    return number();
-  }
-  bool string() {
-    if (!eat('"')) return false;
-    while (i_ < s_.size()) {
-      const unsigned char c = static_cast<unsigned char>(s_[i_++]);
-      if (c == '"') return true;
-      if (c < 0x20) return false;
-      if (c == '\\') {
-        if (i_ >= s_.size() || std::strchr("\"\\/bfnrtu", s_[i_]) == nullptr) return false;
-        ++i_;
-      }
-    }
-    return false;
-  }
-  bool number() {
-    const size_t start = i_;
-    eat('-');
-    size_t digits = 0;
-    while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_, ++digits;
-    if (digits == 0) return false;
-    if (eat('.')) {
-      digits = 0;
-      while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_, ++digits;
-      if (digits == 0) return false;
-    }
-    if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
-      ++i_;
-      if (!eat('+')) eat('-');
-      digits = 0;
-      while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_, ++digits;
-      if (digits == 0) return false;
-    }
-    return i_ > start;
-  }
-  bool eat(char c) {
-    if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
-    return false;
-  }
-  void ws() {
-    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\r')) ++i_;
-  }
-  const std::string& s_;
-  size_t i_ = 0;
-};
-
 // Inputs are fed in chunks of whole lines of at most 4 KiB (gpsd's own lines are shorter than
 // GPS_JSON_RESPONSE_MAX, 10240 bytes; a longer line is cut), so the seed files (gpsd's .chk
 // decodes of whole logs) work as they are.
@@ -215,7 +117,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     size_t e = text.find('\n', s);
     if (e == std::string::npos) e = text.size();
     std::string line = text.substr(s, std::min<size_t>(e - s, 4000));
-    if (!line.empty() && line[0] == '{' && !Json(line).one_object()) line.clear();
     if (!chunk.empty() && chunk.size() + line.size() + 1 > 4096) {
       feed(g, chunk, nav, ais, now);
       chunk.clear();

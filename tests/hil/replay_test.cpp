@@ -513,6 +513,15 @@ TEST(HilReplay, FakeGpsdEdgeCases) {
     put("{\"class\":\"AIS\",\"device\":\"/dev/x\",\"type\":24,\"repeat\":0,\"mmsi\":271041815,\"scaled\":false,"
         "\"shiptype\":60,\"vendorid\":\"1D00014\",\"model\":12,\"serial\":199796,\"callsign\":\"TC6163\","
         "\"to_bow\":0,\"to_stern\":15,\"to_port\":0,\"to_starboard\":5}\r\n");
+    // Lines on which libgps 3.22's gps_unpack loops for ever (fuzz_gpsd_json): the client must
+    // refuse them and go on. A DEVICES list is well-formed gpsd output, ignored.
+    put("{\"class\":\"AIS\",\"type\":24,\"callsign\":\"TC616false3\",\"class\":\"TPV\"}\r\n");
+    put("{\"class\":\"TPV\",\"mode\":\"x\",\"class\":\"TPV\"}\r\n");
+    put("{\"classppp\":\"TPV\",\"mode\":\"x\",\"class\":\"TPV\"}\r\n");
+    put("{\"class\":\"DEVICES\",\"devices\":[{\"class\":\"DEVICE\",\"path\":\"/dev/" + std::string(300, 'p') +
+        "\"},{\"class\":\"DEVICE\",\"path\":\"/dev/y\"}]}\r\n");
+    put("{\"class\":\"TPV\",\"mode\":3}{\"class\":\"TPV\",\"mode\":3}\r\n");
+    put("{\"class\":\"TPV\",\"device\":\"" + std::string(40000, 'd') + "\"}\r\n");  // > 16 KiB: dropped
     put("{\"class\":\"TPV\",\"device\":\"/dev/x\",\"mode\":1}\r\n");
     put("{\"class\":\"DEVICE\",\"path\":\"/dev/x\",\"activated\":0}\r\n");
     pause(200);
@@ -542,7 +551,8 @@ TEST(HilReplay, FakeGpsdEdgeCases) {
   // ... and one that returned at once while a partial line was buffered would spin: ~2.2 s of
   // 50 ms polls are ~45 calls.
   EXPECT_LT(polls, 200);
-  EXPECT_EQ(client.unparsed(), 3u);  // broken ATT, ERROR, garbage
+  // broken ATT, ERROR, garbage; four lines that would hang libgps, one line longer than 16 KiB
+  EXPECT_EQ(client.unparsed(), 8u);
 
   ASSERT_EQ(ev.size(), 9u);
   const auto& f3 = std::get<GnssFix>(ev[0]);
@@ -581,6 +591,23 @@ TEST(HilReplay, FakeGpsdEdgeCases) {
   EXPECT_TRUE(std::isnan(f1.lat_deg) && std::isnan(f1.lon_deg) && std::isnan(f1.speed) && std::isnan(f1.track_deg));
   EXPECT_EQ(std::get<DeviceEnd>(ev[7]).device, "/dev/x");
   EXPECT_TRUE(std::holds_alternative<DeviceEnd>(ev[8]));  // the connection closed
+}
+
+TEST(HilReplay, LinesThatWouldHangLibgpsAreNamed) {
+  EXPECT_EQ(gpsd_json_problem(R"({"class":"TPV","device":"/dev/x","mode":3,"lat":59.9,"lon":10.7})"), "");
+  EXPECT_EQ(gpsd_json_problem(R"({"class":"ATT","heading":47.5,"a":[1,-2.5e3,true,null,{"b":"\"q\""}]} )"), "");
+  EXPECT_EQ(gpsd_json_problem(R"({"class":"TPV","mode":"x","class":"TPV"})"), "more than one \"class\": key");
+  EXPECT_EQ(gpsd_json_problem(R"({"classp":"TPV","mode":"x","class":"TPV"})"), "\"class\" is not the first key");
+  EXPECT_EQ(gpsd_json_problem(R"( {"class":"TPV"})"), "\"class\" is not the first key");
+  EXPECT_EQ(gpsd_json_problem(R"({"class":"TPV"}{"class":"TPV"})"), "not one well-formed JSON object");
+  for (const char* bad : {R"({"class":"ATT",,"heading":1})", R"({"class":"TPV","mode":01.})", R"({"class":"TPV")",
+                          R"({"class":"TPV","x":1e})", R"({"class":"TPV","x":"a\q"})", R"([{"class":"TPV"}])", ""})
+    EXPECT_EQ(gpsd_json_problem(bad), "not one well-formed JSON object") << bad;
+  // Deeper than 32 levels is refused, not recursed into.
+  std::string deep = R"({"class":"TPV","x":)";
+  for (int i = 0; i < 40; ++i) deep += "[";
+  for (int i = 0; i < 40; ++i) deep += "]";
+  EXPECT_EQ(gpsd_json_problem(deep + "}"), "not one well-formed JSON object");
 }
 
 TEST(HilReplay, NoGpsdThrowsNamingHostAndPort) {

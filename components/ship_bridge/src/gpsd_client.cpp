@@ -1,22 +1,23 @@
 // GpsdClient: libgps (gpsd 3.22, API 11) in JSON watch mode. Facts this relies on, checked on this
 // machine (shared/notes/gpsd.md §3) and in libgps's source (tag release-3.22):
-//  * gps_read() resets `set` only for TPV; DEVICE/AIS/ATT add bits to what was there, so `set` is
-//    cleared before every read. A TPV's absent fields are NaN (or mode 0 / time 0) in gd.fix, and
-//    LATLON_SET is set from the longitude alone: both coordinates are checked.
+//  * gps_unpack() resets `set` only for TPV; DEVICE/AIS/ATT add bits to what was there, so `set`
+//    is cleared before every line. A TPV's absent fields are NaN (or mode 0 / time 0) in gd.fix,
+//    and LATLON_SET is set from the longitude alone: both coordinates are checked.
 //  * gd.ais and gd.attitude share a union: each is read only under its own bit.
-//  * gps_read() returns -1 on EOF or error, 0 when no complete line is buffered, else the line's
-//    length; gps_unpack() never fails, so a line libgps could not parse shows only PACKET_SET.
-//    The raw line is copied into our buffer, which is how DEVICE "activated":0 (no DEVICE_SET in
-//    3.22), raw NMEA and type 24 parts are recognised.
-//  * libgps's socket is non-blocking (netlib.c sets O_NONBLOCK; made sure here), so a partial line
-//    makes gps_read() return 0. But gps_waiting() returns true at once while any bytes are
-//    buffered, so after a partial line the next wait polls the fd itself (else the caller spins).
+//  * gps_unpack() never fails, so a line libgps could not parse shows no report bit. The line is
+//    kept, which is how DEVICE "activated":0 (no DEVICE_SET in 3.22), raw NMEA and type 24 parts
+//    are recognised.
+//  * gps_unpack() loops for ever on some lines (gpsd_json_problem below), so the client reads the
+//    socket itself and hands libgps only lines that cannot make it loop; gps_read() is not used.
+//    libgps still opens the connection and sends the WATCH.
 #include "mpgc/ship_bridge/gpsd_client.hpp"
 
+#include <fcntl.h>
 #include <gps.h>
 #include <poll.h>
-#include <fcntl.h>
+#include <sys/socket.h>
 
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -30,7 +31,102 @@ namespace mpgc::ship_bridge {
 namespace {
 
 const double kNaN = std::nan("");
-constexpr size_t kLineMax = 16384;  // > GPS_JSON_RESPONSE_MAX (10240)
+constexpr size_t kLineMax = 16384;  // > GPS_JSON_RESPONSE_MAX (10240): longer lines are dropped
+constexpr int kReadsPerPoll = 64;   // [-] recv() calls of one poll (8 KiB each): a flood cannot hold poll
+
+// RFC 8259 syntax of one line: exactly one object and nothing after it, nesting at most 32 deep.
+class JsonSyntax {
+ public:
+  explicit JsonSyntax(std::string_view s) : s_(s) {}
+  bool one_object() {
+    ws();
+    if (!object(0)) return false;
+    ws();
+    return i_ == s_.size();
+  }
+
+ private:
+  bool object(int d) {
+    if (d > 32 || !eat('{')) return false;
+    ws();
+    if (eat('}')) return true;
+    for (;;) {
+      ws();
+      if (!string()) return false;
+      ws();
+      if (!eat(':') || !value(d)) return false;
+      ws();
+      if (eat('}')) return true;
+      if (!eat(',')) return false;
+    }
+  }
+  bool array(int d) {
+    if (d > 32 || !eat('[')) return false;
+    ws();
+    if (eat(']')) return true;
+    for (;;) {
+      if (!value(d)) return false;
+      ws();
+      if (eat(']')) return true;
+      if (!eat(',')) return false;
+    }
+  }
+  bool value(int d) {
+    ws();
+    if (i_ >= s_.size()) return false;
+    const char c = s_[i_];
+    if (c == '{') return object(d + 1);
+    if (c == '[') return array(d + 1);
+    if (c == '"') return string();
+    for (std::string_view w : {"true", "false", "null"})
+      if (s_.substr(i_, w.size()) == w) return (i_ += w.size()), true;
+    return number();
+  }
+  bool string() {
+    if (!eat('"')) return false;
+    while (i_ < s_.size()) {
+      const unsigned char c = static_cast<unsigned char>(s_[i_++]);
+      if (c == '"') return true;
+      if (c < 0x20) return false;
+      if (c == '\\') {
+        if (i_ >= s_.size() || std::strchr("\"\\/bfnrtu", s_[i_]) == nullptr) return false;
+        ++i_;
+      }
+    }
+    return false;
+  }
+  bool digits() {
+    const size_t start = i_;
+    while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_;
+    return i_ > start;
+  }
+  bool number() {
+    eat('-');
+    if (!digits()) return false;
+    if (eat('.') && !digits()) return false;
+    if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
+      ++i_;
+      if (!eat('+')) eat('-');
+      if (!digits()) return false;
+    }
+    return true;
+  }
+  bool eat(char c) {
+    if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
+    return false;
+  }
+  void ws() {
+    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\r' || s_[i_] == '\n')) ++i_;
+  }
+  std::string_view s_;
+  size_t i_ = 0;
+};
+
+size_t count_of(std::string_view s, std::string_view what) {
+  size_t n = 0;
+  for (size_t p = s.find(what); p != std::string_view::npos; p = s.find(what, p + 1)) ++n;
+  return n;
+}
 
 // The string value of "key":"..." in a JSON line, "" when absent (gpsd's keys and paths have no
 // escapes worth decoding here).
@@ -179,15 +275,24 @@ AisMessage convert_ais(const ais_t& a, const char* line) {
 
 }  // namespace
 
+std::string gpsd_json_problem(std::string_view line) {
+  if (!JsonSyntax(line).one_object()) return "not one well-formed JSON object";
+  if (line.substr(0, 9) != R"({"class":)") return "\"class\" is not the first key";
+  if (count_of(line, "\"class\":") != 1) return "more than one \"class\": key";
+  return {};
+}
+
 struct GpsdClient::Impl {
   gps_data_t gd{};
   bool open = false;       // gps_open succeeded (gps_close owed)
   bool connected = false;
-  bool partial = false;    // the last read left a partial line in libgps's buffer
+  bool discarding = false; // inside a line longer than kLineMax: dropped up to its end
   uint64_t unparsed = 0;
   std::string last_device;
   std::string where;       // "host:port" for log lines
-  char line[kLineMax];
+  std::string rx;          // received bytes after the last complete line
+  char line[kLineMax + 1];
+  char scratch[kLineMax + 1];  // gps_unpack's own copy (it may write into its argument)
 
   void reject(const char* why) {
     ++unparsed;
@@ -199,6 +304,8 @@ struct GpsdClient::Impl {
   }
 
   void handle(std::vector<GpsdEvent>* out);
+  void take(const char* p, size_t n, std::vector<GpsdEvent>* out);
+  bool read_available(std::vector<GpsdEvent>* out);
 };
 
 GpsdClient::GpsdClient(const std::string& host, int port, bool nmea) : impl_(std::make_unique<Impl>()) {
@@ -221,7 +328,7 @@ GpsdClient::GpsdClient(const std::string& host, int port, bool nmea) : impl_(std
                              std::strerror(e));
   }
   // libgps 3.22 already makes the socket non-blocking; a read must never wait for the rest of a line.
-  int fl = fcntl(I.gd.gps_fd, F_GETFL, 0);
+  const int fl = fcntl(I.gd.gps_fd, F_GETFL, 0);
   if (fl >= 0) (void)fcntl(I.gd.gps_fd, F_SETFL, fl | O_NONBLOCK);
   I.connected = true;
 }
@@ -249,8 +356,16 @@ void GpsdClient::Impl::handle(std::vector<GpsdEvent>* out) {
     reject("not JSON or NMEA");
     return;
   }
-  const gps_mask_t set = gd.set;
   const std::string cls = first_class(line);
+  if (cls == "DEVICES") return;  // nests DEVICE classes (see gpsd_json_problem); not used
+  if (const std::string why = gpsd_json_problem(std::string_view(line, n)); !why.empty()) {
+    reject(why.c_str());
+    return;
+  }
+  gd.set = 0;
+  std::memcpy(scratch, line, n + 1);
+  (void)gps_unpack(scratch, &gd);
+  const gps_mask_t set = gd.set;
 
   if (cls == "TPV") {
     // Every TPV is reported, also mode 0/1 ones without a position: they say "no fix".
@@ -310,7 +425,7 @@ void GpsdClient::Impl::handle(std::vector<GpsdEvent>* out) {
     return;
   }
   // Protocol and reports the bridge does not use.
-  static const char* const known[] = {"VERSION", "DEVICES", "WATCH", "SKY", "GST", "PPS", "TOFF",
+  static const char* const known[] = {"VERSION", "WATCH", "SKY", "GST", "PPS", "TOFF",
                                       "OSC", "RAW", "SUBFRAME", "POLL", "RTCM2", "RTCM3"};
   for (const char* k : known)
     if (cls == k) return;
@@ -321,44 +436,72 @@ void GpsdClient::Impl::handle(std::vector<GpsdEvent>* out) {
   reject("unknown JSON");
 }
 
+// Appends p[0, n) to the line being received and handles every line it completes.
+void GpsdClient::Impl::take(const char* p, size_t n, std::vector<GpsdEvent>* out) {
+  while (n > 0) {
+    const char* nl = static_cast<const char*>(std::memchr(p, '\n', n));
+    const size_t len = nl ? static_cast<size_t>(nl - p) : n;
+    if (!discarding) rx.append(p, len);
+    if (rx.size() > kLineMax) {
+      std::snprintf(line, sizeof line, "%.200s", rx.c_str());
+      reject("line longer than 16384 bytes, dropped");
+      rx.clear();
+      discarding = true;
+    }
+    if (!nl) return;
+    if (!discarding) {
+      if (rx.find('\0') != std::string::npos) {
+        std::snprintf(line, sizeof line, "%.200s", rx.c_str());
+        reject("NUL byte in the line");
+      } else {
+        std::memcpy(line, rx.data(), rx.size());
+        line[rx.size()] = '\0';
+        handle(out);
+      }
+    }
+    rx.clear();
+    discarding = false;
+    p = nl + 1;
+    n -= len + 1;
+  }
+}
+
+// Reads what the socket holds (at most kReadsPerPoll reads); false on end of stream or an error.
+bool GpsdClient::Impl::read_available(std::vector<GpsdEvent>* out) {
+  char buf[8192];
+  for (int reads = 0; reads < kReadsPerPoll;) {
+    const ssize_t r = ::recv(gd.gps_fd, buf, sizeof buf, MSG_DONTWAIT);
+    if (r > 0) {
+      ++reads;
+      take(buf, static_cast<size_t>(r), out);
+    } else if (r == 0) {
+      return false;
+    } else if (errno != EINTR) {
+      return errno == EAGAIN || errno == EWOULDBLOCK;
+    }
+  }
+  return true;
+}
+
 bool GpsdClient::poll(int64_t timeout_us, std::vector<GpsdEvent>* out) {
   Impl& I = *impl_;
   if (!I.connected) return false;
   if (timeout_us < 0) timeout_us = 0;
   if (timeout_us > INT_MAX) timeout_us = INT_MAX;
-  bool ready;
-  if (I.partial) {
-    // libgps holds a partial line: gps_waiting() would say "true" at once. Wait on the socket.
-    struct pollfd p{I.gd.gps_fd, POLLIN, 0};
-    int r = ::poll(&p, 1, static_cast<int>((timeout_us + 999) / 1000));
-    ready = r > 0;
-  } else {
-    ready = gps_waiting(&I.gd, static_cast<int>(timeout_us));
-  }
-  if (!ready) return true;
+  struct pollfd p{I.gd.gps_fd, POLLIN, 0};
+  if (::poll(&p, 1, static_cast<int>((timeout_us + 999) / 1000)) <= 0) return true;
+  bool open = true;
   try {
-    for (;;) {
-      I.gd.set = 0;
-      I.line[0] = '\0';
-      int r = gps_read(&I.gd, I.line, static_cast<int>(sizeof I.line));
-      if (r == -1) {
-        I.connected = false;
-        out->push_back(DeviceEnd{I.last_device});
-        return false;
-      }
-      if (r == 0) {  // no complete line yet
-        I.partial = true;
-        break;
-      }
-      I.partial = false;
-      I.handle(out);
-      if (!gps_waiting(&I.gd, 0)) break;
-    }
+    open = I.read_available(out);
   } catch (...) {
     // Never throw from poll (an allocation failure while appending): count and go on.
     ++I.unparsed;
   }
-  return true;
+  if (!open) {
+    I.connected = false;
+    out->push_back(DeviceEnd{I.last_device});
+  }
+  return open;
 }
 
 }  // namespace mpgc::ship_bridge

@@ -6,6 +6,14 @@
 
 namespace mpgc::rt {
 
+// [s] later - earlier for stamps that come off the bus: exact while the int64 difference exists,
+// else taken in double (a stamp near INT64_MIN would overflow the subtraction: undefined).
+inline double seconds_between(int64_t later_ns, int64_t earlier_ns) {
+  int64_t d;
+  if (!__builtin_sub_overflow(later_ns, earlier_ns, &d)) return static_cast<double>(d) * 1e-9;
+  return (static_cast<double>(later_ns) - static_cast<double>(earlier_ns)) * 1e-9;
+}
+
 class Clock {
  public:
   virtual ~Clock() = default;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -62,6 +63,17 @@ struct DeviceEnd {
 };
 
 using GpsdEvent = std::variant<GnssFix, AttitudeHeading, AisMessage, RawNmea, DeviceEnd>;
+
+// Why libgps 3.22 must not unpack this JSON line ("" = it may). When json_read_object fails
+// (a key it does not know, a value of the wrong type, a string longer than its field), gps_unpack
+// retries from where the error was; if another "class": follows there, it retries the same failing
+// parse for ever, and malformed JSON can do the same (checked on this machine; found by
+// fuzz_gpsd_json: a TPV with "mode":"x" before a second "class", an unknown key before the only
+// "class", an AIS callsign longer than libgps's field, a DEVICES list whose first device has a
+// path longer than GPS_PATH_MAX, two objects on one line). So a line reaches libgps only as one
+// well-formed object whose first key is its only "class": then no "class": follows any error. gpsd
+// writes every report so, except DEVICES (nested DEVICE classes), which the client does not unpack.
+std::string gpsd_json_problem(std::string_view line);
 
 class GpsdClient {
  public:
