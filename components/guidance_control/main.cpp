@@ -9,6 +9,7 @@
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/runtime/component.hpp"
+#include "mpgc/nav/jump_gate.hpp"
 #include "mpgc/topics.hpp"
 #include "mpgc/guidance_control/validate.hpp"
 
@@ -74,6 +75,7 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("speed.max_rpm_rate", &s.max_rpm_rate, d.speed.max_rpm_rate, "1/min/s", 0.01, 1000.0, "rpm slew limit");
   ps.add("plan.max_age", &p.gc.plan_max_age, d.plan_max_age, "s", 1.0, 86400.0,
          "the plan followed may be this old (from its stamp); then, without a newer valid one, safe mode");
+  mpgc::nav::declare_params(ps, &p.gc.jumps);
   ps.add("nav.timeout", &p.gc.nav_timeout, d.nav_timeout, "s", 0.1, 600.0,
          "own state older than this -> safe mode, rudder amidships, rpm reduced to safe_speed's");
   ps.add("safe_speed", &p.gc.safe_speed, d.safe_speed, "m/s", 0.1, 30.0, "speed in safe mode (heading held)");

@@ -140,20 +140,13 @@ int main(int argc, char** argv) {
       om::MovingObstacleFeed feed;
       uint32_t version = 0;
       bool origin_warned = false;
-      // Health is the sum of independent problems ("chart", "tracks"); OK when there are none.
-      std::map<std::string, std::string> problems;
       om::MovingObstacleFeed::Feed last_feed = om::MovingObstacleFeed::Feed::kWaiting;
       bool emptied = false;  // silent and every track aged out
     };
     auto st = std::make_shared<State>(State{{}, {}, chart_stamp(files), om::RegionPolicy(p.region), {},
-                                            om::MovingObstacleFeed(p.domain, p.aging), 0, false, {}, {}, false});
-    auto set_problem = [c, st](const std::string& what, const std::string& detail) {
-      if (detail.empty()) st->problems.erase(what);
-      else st->problems[what] = detail;
-      std::string all;
-      for (const auto& [k, v] : st->problems) all += (all.empty() ? "" : "; ") + v;
-      c->set_health(all.empty() ? msg::HealthState::HEALTH_OK : msg::HealthState::HEALTH_DEGRADED, all);
-    };
+                                            om::MovingObstacleFeed(p.domain, p.aging), 0, false, {}, false});
+    // Health is the sum of independent problems ("chart", "tracks"); OK when there are none.
+    auto set_problem = [c](const std::string& what, const std::string& detail) { c->set_problem(what, detail); };
     auto set_chart = [st](om::ObstacleSet s) {
       st->chart = std::move(s);
       st->bounds = om::FixedObstacleMap({}, st->chart.polygons).bounds();

@@ -9,6 +9,7 @@
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/nav.hpp"
+#include "mpgc/nav/jump_gate.hpp"
 #include "mpgc/msg/obstacles.hpp"
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/msg/tracks.hpp"
@@ -37,6 +38,7 @@ struct NodeParams {
   double arrival_radius = 100;   // [m] no more plans once the own ship is this close to the goal
   double default_speed = 5;      // [m/s] when neither the goal nor the own state gives a speed
   double max_state_age = 5;      // [s] own state older than this is not planned from
+  mpgc::nav::JumpGateParams jumps;  // own position jumps are not planned from (timeout: max_state_age)
   double max_obstacle_age = 10;  // [s] moving obstacles older than this are not planned with
   bool warm_start = true;        // seed the tree with the previous path of the same goal
   bool pin_encounters = true;    // hold each leg to the obligation fixed at the encounter's start
@@ -81,6 +83,7 @@ void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
   ps.add("plan.arrival_radius", &p.arrival_radius, 100.0, "m", 0.0, 1e5, "stop planning this close to the goal");
   ps.add("plan.default_speed", &p.default_speed, 5.0, "m/s", 0.1, 50.0, "planned speed when no other is known");
   ps.add("plan.max_state_age", &p.max_state_age, 5.0, "s", 0.1, 600.0, "older own states are not planned from");
+  mpgc::nav::declare_params(ps, &p.jumps);
   ps.add("plan.max_obstacle_age", &p.max_obstacle_age, 10.0, "s", 0.1, 600.0,
          "moving obstacles older than this (obstacle_manager publishes every 0.5 s) are not extrapolated: no plan "
          "until fresh ones come (guidance keeps the last plan, then slows to steerage speed)");
@@ -159,8 +162,10 @@ int main(int argc, char** argv) {
       opp::EncounterMemory encounters;
       std::string stale;  // why no plan is made now ("" = inputs fresh)
       mpgc::rt::WallClock wall;  // planning time and budget are wall time, also on simulated time
+      mpgc::nav::JumpGate jumps;
     };
-    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {}});
+    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {},
+                                            mpgc::nav::JumpGate({p.jumps.max_speed, p.jumps.margin, p.max_state_age})});
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
     auto* enc_out = &c->publisher<msg::EncounterList>(mpgc::topics::kPlanEncounters, mpgc::dds::QosProfile::latched());
@@ -182,7 +187,13 @@ int main(int argc, char** argv) {
     }
 
     c->subscribe<msg::NavState>(mpgc::topics::kOwnState, mpgc::dds::QosProfile::state(),
-                                [st](const msg::NavState& s) { st->own = s; }, opp::check_nav);
+                                [c, st](const msg::NavState& s) {
+                                  std::string jump;
+                                  if (st->jumps.check(s.x, s.y, s.header.stamp_ns, &jump) == mpgc::nav::JumpGate::Verdict::kTaken)
+                                    st->own = s;
+                                  else
+                                    c->reject("nav.jump", jump);  // planned from the last good state until it is stale
+                                }, opp::check_nav);
     c->subscribe<msg::MissionGoal>(mpgc::topics::kGoal, mpgc::dds::QosProfile::latched(),
                                    [st](const msg::MissionGoal& g) { st->goal = g; }, opp::check_goal);
     c->subscribe<msg::MovingObstacles>(mpgc::topics::kMovingObstacles, mpgc::dds::QosProfile::state(),

@@ -16,8 +16,8 @@
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/ship_bridge/bridge.hpp"
 #include "mpgc/ship_bridge/gpsd_client.hpp"
+#include "mpgc/ship/check_command.hpp"
 #include "mpgc/topics.hpp"
-#include "mpgc/ship_bridge/validate.hpp"
 
 namespace sb = mpgc::ship_bridge;
 namespace msg = mpgc::msg;
@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
           st->cmd = a;
           st->cmd_ns = c.now_ns();
         },
-        mpgc::ship_bridge::check_command);
+        mpgc::ship::check_command);
 
     const auto apply_lines = [&c, nav](const std::vector<std::string>& lines, const char* input) {
       for (const auto& l : lines) {

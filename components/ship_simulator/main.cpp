@@ -18,8 +18,8 @@
 #include "mpgc/ship_simulator/sensor_faults.hpp"
 #include "mpgc/ship_simulator/step_log.hpp"
 #include "mpgc/ship_simulator/world.hpp"
+#include "mpgc/ship/check_command.hpp"
 #include "mpgc/topics.hpp"
-#include "mpgc/ship_simulator/validate.hpp"
 
 namespace sim = mpgc::ship_simulator;
 namespace msg = mpgc::msg;
@@ -29,7 +29,7 @@ namespace topics = mpgc::topics;
 
 namespace {
 
-using mpgc::ship_simulator::check_command;
+using mpgc::ship::check_command;
 
 struct Params {
   std::string world_file;
@@ -195,14 +195,7 @@ int main(int argc, char** argv) {
                                                             : fmt::format("engine to at most {:.1f} rpm", wd.safe_rpm);
     c.log().info("actuator watchdog: after {} s without an order, rudder amidships, {}", wd.timeout_s, engine_safe);
     // Health is the sum of what is wrong: the watchdog and the lockstep barrier each report theirs.
-    auto problems = std::make_shared<std::map<std::string, std::string>>();
-    auto report = [&c, problems](const std::string& source, const std::string& detail) {
-      if (detail.empty()) problems->erase(source);
-      else (*problems)[source] = detail;
-      std::string all;
-      for (const auto& [k, v] : *problems) all += (all.empty() ? "" : "; ") + v;
-      c.set_health(all.empty() ? msg::HealthState::HEALTH_OK : msg::HealthState::HEALTH_DEGRADED, all);
-    };
+    auto report = [&c](const std::string& source, const std::string& detail) { c.set_problem(source, detail); };
     auto take_orders = [&, st, world, hil, wd, engine_safe, report] {
       const int64_t t = world->time_ns();
       if (p.hil) {

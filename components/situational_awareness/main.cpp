@@ -7,6 +7,7 @@
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/nav.hpp"
+#include "mpgc/nav/jump_gate.hpp"
 #include "mpgc/msg/sensors.hpp"
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/runtime/component.hpp"
@@ -31,6 +32,7 @@ struct Params {
   double origin_lat = 0.0;      // [deg]
   double origin_lon = 0.0;      // [deg]
   double own_timeout = 5.0;     // [s] no encounters from an own state older than this
+  mpgc::nav::JumpGateParams jumps;  // own position jumps (timeout: own_timeout)
   sa::TrackerParams tracker;
   cr::ColregParams colreg;
   double theta_o_deg = 22.5, theta_h_deg = 22.5, overtake_deg = 67.5, crossing_deg = 5.0;  // [deg]
@@ -44,6 +46,7 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("origin.lat", &p.origin_lat, 0.0, "deg", -90.0, 90.0, "NED origin latitude (origin.source = param)");
   ps.add("origin.lon", &p.origin_lon, 0.0, "deg", -180.0, 180.0, "NED origin longitude (origin.source = param)");
   ps.add("own.timeout", &p.own_timeout, 5.0, "s", 0.1, 3600.0, "no encounters from an older own state");
+  mpgc::nav::declare_params(ps, &p.jumps);
   auto& t = p.tracker;
   ps.add("tracker.process_noise", &t.process_noise, 0.01, "m^2/s^3", 1e-8, 100.0, "CV white-acceleration PSD");
   ps.add("tracker.ais_pos_std", &t.ais_pos_std, 10.0, "m", 0.1, 1000.0, "AIS position sigma per axis");
@@ -119,7 +122,9 @@ int main(int argc, char** argv) {
   declare(ps, p);
   std::optional<sa::Tracker> tracker;
   std::optional<msg::NavState> own;
+  std::optional<mpgc::nav::JumpGate> own_jumps;
   return mpgc::rt::run_component("situational_awareness", argc, argv, ps, [&](mpgc::rt::Component& c) {
+    own_jumps.emplace(mpgc::nav::JumpGateParams{p.jumps.max_speed, p.jumps.margin, p.own_timeout});
     p.colreg.theta_o = geo::deg2rad(p.theta_o_deg);
     p.colreg.theta_h = geo::deg2rad(p.theta_h_deg);
     p.colreg.overtake_aspect = geo::deg2rad(p.overtake_deg);
@@ -147,6 +152,11 @@ int main(int argc, char** argv) {
             } catch (const std::exception& e) {
               c.reject("nav.bad_fix", e.what());
             }
+          }
+          std::string jump;
+          if (own_jumps->check(s.x, s.y, s.header.stamp_ns, &jump) != mpgc::nav::JumpGate::Verdict::kTaken) {
+            c.reject("nav.jump", jump);  // encounters from the last good state until it is stale
+            return;
           }
           own = s;
           tracker->advance(s.header.stamp_ns);

@@ -5,6 +5,7 @@
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/geo/geodesy.hpp"
+#include "mpgc/nav/jump_gate.hpp"
 
 using namespace mpgc::geo;
 
@@ -65,4 +66,32 @@ TEST(Geodesy, RejectsOutOfRangeAndNonFinite) {
   EXPECT_THROW(ned.to_ned({NAN, 0}), std::invalid_argument);
   EXPECT_THROW(ned.to_ned({0, deg2rad(181)}), std::invalid_argument);
   EXPECT_THROW(ned.to_latlon({INFINITY, 0}), std::invalid_argument);
+}
+
+// nav/jump_gate.hpp: the state machine the bridge's fusion and guidance_control share.
+TEST(JumpGate, RefusesImpossibleJumpsAndTakesAConfirmedNewPlace) {
+  using mpgc::nav::JumpGate;
+  JumpGate g({25.0, 30.0, 3.0});
+  const int64_t s = 1'000'000'000;
+  std::string why;
+  EXPECT_EQ(g.check(0, 0, 0), JumpGate::Verdict::kTaken);  // the first fix is taken as it is
+  EXPECT_EQ(g.check(50, 0, 1 * s), JumpGate::Verdict::kTaken);  // 50 m in 1 s <= 25 + 30
+  EXPECT_EQ(g.check(50, 56, 2 * s, &why), JumpGate::Verdict::kJump);  // 56 m in 1 s > 55 m
+  EXPECT_EQ(why, "position jumped 56.0 m (at most 55.0 m possible)");
+  EXPECT_TRUE(g.jumped());
+  EXPECT_EQ(g.check(50, 5, 2 * s), JumpGate::Verdict::kTaken);  // back where it can be
+  // A jump that persists: refused while the last fix taken (2 s) is fresh, then confirmed.
+  EXPECT_EQ(g.check(5000, 0, 5 * s), JumpGate::Verdict::kJump);
+  EXPECT_EQ(g.check(5000, 0, 5 * s + s / 2, &why), JumpGate::Verdict::kUnconfirmed);
+  EXPECT_NE(why.find("waiting for a second fix"), std::string::npos);
+  EXPECT_EQ(g.check(5000, 0, 5 * s + s / 2), JumpGate::Verdict::kUnconfirmed);  // same time: no confirmation
+  EXPECT_EQ(g.check(9000, 0, 6 * s), JumpGate::Verdict::kUnconfirmed);          // disagrees: a new candidate
+  EXPECT_EQ(g.check(9010, 0, 7 * s), JumpGate::Verdict::kTaken);
+  EXPECT_FALSE(g.jumped());
+  // After a lost fix the next one is taken wherever it is.
+  g.forget();
+  EXPECT_EQ(g.check(-7000, 0, 8 * s), JumpGate::Verdict::kTaken);
+  EXPECT_THROW(JumpGate({0.0, 30.0, 3.0}), std::invalid_argument);
+  EXPECT_THROW(JumpGate({25.0, -1.0, 3.0}), std::invalid_argument);
+  EXPECT_THROW(JumpGate({25.0, 30.0, NAN}), std::invalid_argument);
 }

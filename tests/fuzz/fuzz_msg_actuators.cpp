@@ -1,17 +1,15 @@
-// control/actuators, both of its readers: the simulator (check_command, then the own-ship model
-// steps with the order, which saturates it: MMG and Nomoto) and the ship bridge (check_command,
-// then encode_orders saturates it onto the actuator wire, whose ROR/PRC lines the simulator's
-// devices read back in HIL). Validators in mpgc/ship_simulator/validate.hpp and
-// mpgc/ship_bridge/validate.hpp. No exception is expected: every one is a finding.
+// control/actuators, both of its readers, after the validator they share (mpgc/ship/check_command.hpp):
+// the simulator (the own-ship model steps with the order, which saturates it: MMG and Nomoto) and
+// the ship bridge (encode_orders saturates it onto the actuator wire, whose ROR/PRC lines the
+// simulator's devices read back in HIL). No exception is expected: every one is a finding.
 #include <memory>
 
 #include "env.hpp"
 #include "msg.hpp"
+#include "mpgc/ship/check_command.hpp"
 #include "mpgc/ship_bridge/bridge.hpp"
-#include "mpgc/ship_bridge/validate.hpp"
 #include "mpgc/ship_simulator/devices.hpp"
 #include "mpgc/ship_simulator/model_factory.hpp"
-#include "mpgc/ship_simulator/validate.hpp"
 
 namespace sim = mpgc::ship_simulator;
 namespace sb = mpgc::ship_bridge;
@@ -54,12 +52,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   int64_t t = 0;
   for (int i = 0; i < 8 && !r.empty(); ++i) {
     const msg::ActuatorCommand a = fz::actuators(r);
-    if (sim::check_command(a).empty()) {
+    if (mpgc::ship::check_command(a).empty()) {
       const sim::ShipCommand cmd{a.rudder, a.propeller_rpm};
       m.mmg->step(0.1, cmd);
       m.nomoto->step(0.1, cmd);
-    }
-    if (sb::check_command(a).empty()) {
       bool sat = false;
       const std::string wire = sb::encode_orders(a.rudder, a.propeller_rpm, sb::ActuatorLimits{}, &sat);
       std::vector<std::string> lines;

@@ -290,6 +290,33 @@ TEST(GuidanceController, OwnStateLostWhileTurningRudderAmidshipsThenResumes) {
   EXPECT_EQ(back.status.plan_id, 1u);
 }
 
+// A position jump (a GNSS glitch, a spoofed fix): refused while the last state is fresh, so the
+// ship is steered by the last good state and, if the jump persists, goes to safe mode after
+// nav_timeout; the new place is then taken once a second state agrees with it.
+TEST(GuidanceController, OwnPositionJumpIsRefusedThenSafeModeThenTakenWhenConfirmed) {
+  Loop L;
+  L.params.plan_max_age = 1e4;
+  gc::GuidanceController c(L.params);
+  L.send(c, plan(1, {{0, 0}, {20000, 0}}));
+  for (double t = 0; t < 20.0; t += 0.5) {
+    ASSERT_EQ(c.on_nav({7.0 * t, 0, 0, 7, 0}, t), "") << t;
+    ASSERT_EQ(c.step(t).status.mode, gc::Mode::Following);
+  }
+  // 2 km east in 0.5 s: refused; a 40 m wobble (margin 30 m + 25 m/s x 0.5 s) is not.
+  EXPECT_NE(c.on_nav({140.0, 2000.0, 0, 7, 0}, 20.0).find("position jumped"), std::string::npos);
+  EXPECT_EQ(c.on_nav({143.5, 40.0, 0, 7, 0}, 20.5), "");
+  double t = 21.0;
+  for (; t <= 20.5 + L.params.nav_timeout; t += 0.5)  // while the last good state is fresh
+    EXPECT_NE(c.on_nav({7.0 * t, 2000.0, 0, 7, 0}, t).find("position jumped"), std::string::npos) << t;
+  const auto cmd = c.step(t);
+  EXPECT_EQ(cmd.status.mode, gc::Mode::SafeMode) << cmd.status.detail;
+  EXPECT_EQ(cmd.rudder, 0.0);
+  // The last good state is stale: two agreeing states at the new place are needed.
+  EXPECT_NE(c.on_nav({7.0 * t, 2000.0, 0, 7, 0}, t).find("waiting for a second fix"), std::string::npos);
+  EXPECT_EQ(c.on_nav({7.0 * (t + 0.5), 2000.0, 0, 7, 0}, t + 0.5), "");
+  EXPECT_EQ(c.step(t + 0.5).status.mode, gc::Mode::Following);
+}
+
 // Late plans (seed 000 section 6): a plan computed for a later time is held and replaces the one
 // followed only when the clock reaches its effective time.
 TEST(GuidanceController, LatePlanTakesEffectAtItsEffectiveTime) {

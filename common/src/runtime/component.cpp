@@ -154,6 +154,14 @@ void Component::set_health(msg::HealthState state, const std::string& detail) {
   }
 }
 
+void Component::set_problem(const std::string& source, const std::string& detail) {
+  if (detail.empty()) problems_.erase(source);
+  else problems_[source] = detail;
+  std::string all;
+  for (const auto& [k, v] : problems_) all += (all.empty() ? "" : "; ") + v;
+  set_health(all.empty() ? msg::HealthState::HEALTH_OK : msg::HealthState::HEALTH_DEGRADED, all);
+}
+
 void Component::publish_health() {
   msg::ComponentHealth h;
   h.header = header();

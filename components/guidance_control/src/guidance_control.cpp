@@ -45,16 +45,26 @@ void GuidanceControlParams::validate() const {
   auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!pos(plan_max_age)) throw std::invalid_argument("GuidanceControlParams.plan_max_age must be finite and > 0 s");
   if (!pos(nav_timeout)) throw std::invalid_argument("GuidanceControlParams.nav_timeout must be finite and > 0 s");
+  nav::JumpGateParams{jumps.max_speed, jumps.margin, nav_timeout}.validate();
   if (!pos(safe_speed)) throw std::invalid_argument("GuidanceControlParams.safe_speed must be finite and > 0 m/s");
   if (!std::isfinite(arrival_speed) || arrival_speed < 0.0)
     throw std::invalid_argument("GuidanceControlParams.arrival_speed must be finite and >= 0 m/s");
   if (!pos(max_dt)) throw std::invalid_argument("GuidanceControlParams.max_dt must be finite and > 0 s");
 }
 
-GuidanceController::GuidanceController(const GuidanceControlParams& p)
-    : p_(p), follower_(p.follower), heading_(p.heading), speed_(p.speed) {
-  p_.validate();
+namespace {
+const GuidanceControlParams& validated(const GuidanceControlParams& p) {
+  p.validate();
+  return p;
 }
+}  // namespace
+
+GuidanceController::GuidanceController(const GuidanceControlParams& p)
+    : p_(validated(p)),
+      follower_(p.follower),
+      heading_(p.heading),
+      speed_(p.speed),
+      jumps_(nav::JumpGateParams{p.jumps.max_speed, p.jumps.margin, p.nav_timeout}) {}
 
 std::string GuidanceController::on_plan(const PlanInput& plan, double t) {
   if (!std::isfinite(t)) return "non-finite receive time";
@@ -85,8 +95,9 @@ std::string GuidanceController::on_plan(const PlanInput& plan, double t) {
 
 std::string GuidanceController::on_nav(const NavInput& nav, double t) {
   if (!std::isfinite(t)) return "non-finite receive time";
-  const std::string why = check_nav(nav);
+  std::string why = check_nav(nav);
   if (!why.empty()) return why;
+  if (jumps_.check(nav.x, nav.y, std::llround(t * 1e9), &why) != nav::JumpGate::Verdict::kTaken) return why;
   nav_ = nav;
   nav_t_ = t;
   return {};

@@ -170,7 +170,7 @@ MovingObstacleFeed::Output MovingObstacleFeed::at(int64_t now_ns) {
   if (!first_call_ns_) first_call_ns_ = now_ns;
   Output out;
   const int64_t since = arrival_ns_ ? *arrival_ns_ : *first_call_ns_;
-  out.silence = std::max(0.0, rt::seconds_between(now_ns, since));
+  out.silence = std::max(0.0, static_cast<double>(rt::ns_between(now_ns, since)) / 1e9);
   if (!list_stamp_ns_) {
     out.t_valid_ns = now_ns;  // no tracks yet: an empty, current list
     out.feed = out.silence > a_.timeout ? Feed::kSilent : Feed::kWaiting;
@@ -178,7 +178,7 @@ MovingObstacleFeed::Output MovingObstacleFeed::at(int64_t now_ns) {
   }
   out.feed = out.silence > a_.timeout ? Feed::kSilent : Feed::kFresh;
   // A stamp ahead of our clock (another host's clock) counts as age 0, never as negative age.
-  const double dt = std::max(0.0, rt::seconds_between(now_ns, *list_stamp_ns_));
+  const double dt = std::max(0.0, static_cast<double>(rt::ns_between(now_ns, *list_stamp_ns_)) / 1e9);
   out.t_valid_ns = *list_stamp_ns_;
   for (const auto& h : held_) {
     if (h.since_update + dt > a_.max_age) {

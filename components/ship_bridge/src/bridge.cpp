@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "mpgc/geo/angles.hpp"
@@ -14,10 +13,10 @@ namespace {
 
 double age_s(int64_t t, int64_t now) { return t < 0 ? INFINITY : static_cast<double>(now - t) * 1e-9; }
 bool fresh(int64_t t, int64_t now, double timeout) { return t >= 0 && age_s(t, now) <= timeout; }
-std::string fmt1(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f", v);
-  return b;
+// The parameters, checked before any member is built from them.
+const NavParams& validated(const NavParams& p) {
+  p.validate();
+  return p;
 }
 
 }  // namespace
@@ -34,8 +33,8 @@ void NavParams::validate() const {
   if (!(std::isfinite(jump_margin) && jump_margin >= 0)) throw std::invalid_argument("nav.jump_margin must be >= 0");
 }
 
-NavFusion::NavFusion(const NavParams& p, std::optional<geo::LatLon> origin) : p_(p) {
-  p_.validate();
+NavFusion::NavFusion(const NavParams& p, std::optional<geo::LatLon> origin)
+    : p_(validated(p)), jumps_(nav::JumpGateParams{p.max_speed, p.jump_margin, p.fix_timeout}) {
   if (origin) {
     geo::check_latlon(origin->lat, origin->lon);
     frame_.emplace(*origin);
@@ -53,14 +52,17 @@ std::string NavFusion::on_fix(const GnssFix& f, int64_t now) {
   // No fix is news, not a value: the position becomes invalid now, not after the timeout.
   if (f.mode < 2) {
     fix_t_ = -1;
+    jumps_.forget();
     return reject("fix.no_fix", "no fix (mode " + std::to_string(f.mode) + ")");
   }
   if (f.mode == 2 && p_.require_3d) {
     fix_t_ = -1;
+    jumps_.forget();
     return reject("fix.2d", "2-D fix where 3-D is required");
   }
   if (receiver_invalid_) {
     fix_t_ = -1;
+    jumps_.forget();
     return reject("fix.no_fix", "the receiver flags its fix invalid (RMC status V / GGA quality 0)");
   }
   if (!std::isfinite(f.lat_deg) || !std::isfinite(f.lon_deg))
@@ -71,27 +73,11 @@ std::string NavFusion::on_fix(const GnssFix& f, int64_t now) {
   const geo::LatLon ll{geo::deg2rad(f.lat_deg), geo::deg2rad(f.lon_deg)};
   if (!frame_) frame_.emplace(ll);  // the first good fix is the origin
   const geo::NorthEast ne = frame_->to_ned(ll);
-  // A jump no ship can make: further than max_speed over the time since the last good fix. Once
-  // that fix is stale the new position is taken (the fix stayed invalid meanwhile), so a real
-  // relocation after an outage is not rejected for ever.
-  const auto reach = [&](int64_t since) { return p_.max_speed * std::max(age_s(since, now), 0.0) + p_.jump_margin; };
-  if (fix_t_ >= 0 && fresh(fix_t_, now, p_.fix_timeout)) {
-    const double d = std::hypot(ne.x - x_, ne.y - y_);
-    if (d > reach(fix_t_)) {
-      jump_pending_ = true;
-      candidate_.reset();
-      return reject("fix.jump", "position jumped " + fmt1(d) + " m (at most " + fmt1(reach(fix_t_)) + " m possible)");
-    }
-  } else if (jump_pending_) {
-    // The second fix must be a later one: what arrives together (one poll) is not a confirmation.
-    const bool agrees = candidate_ && now > candidate_->second &&
-                        std::hypot(ne.x - candidate_->first.x, ne.y - candidate_->first.y) <= reach(candidate_->second);
-    if (!agrees) {
-      if (!candidate_ || now > candidate_->second) candidate_ = std::make_pair(ne, now);
-      return reject("fix.unconfirmed", "new position after a jump: waiting for a second fix that agrees");
-    }
-    jump_pending_ = false;
-    candidate_.reset();
+  std::string jump;
+  switch (jumps_.check(ne.x, ne.y, now, &jump)) {
+    case nav::JumpGate::Verdict::kJump: return reject("fix.jump", jump);
+    case nav::JumpGate::Verdict::kUnconfirmed: return reject("fix.unconfirmed", jump);
+    case nav::JumpGate::Verdict::kTaken: break;
   }
   lat_ = ll.lat, lon_ = ll.lon, x_ = ne.x, y_ = ne.y, fix_t_ = now;
   std::string why;
@@ -105,7 +91,7 @@ std::string NavFusion::on_fix(const GnssFix& f, int64_t now) {
 void NavFusion::on_receiver_status(bool valid, int64_t /*now*/) {
   if (!valid && !receiver_invalid_) ++rejected_["fix.receiver_invalid"];
   receiver_invalid_ = !valid;
-  if (!valid) fix_t_ = -1;
+  if (!valid) fix_t_ = -1, jumps_.forget();
 }
 
 std::string NavFusion::on_heading(double deg, int64_t now) {
@@ -146,7 +132,7 @@ NavOutput NavFusion::state(int64_t now) const {
     if (receiver_invalid_) add("no fix");
     else if (last_any_fix_t_ < 0) add("no fix yet");
     else if (fix_mode_ < 2) add("no fix");
-    else if (jump_pending_) add("position jumped");
+    else if (jumps_.jumped()) add("position jumped");
     else if (fix_mode_ == 2 && p_.require_3d) add("2-D fix");
     else add("position stale");  // no ages here: health repeats this text only when it changes
   }

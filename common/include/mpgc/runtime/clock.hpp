@@ -3,15 +3,20 @@
 
 #include <atomic>
 #include <cstdint>
+#include <limits>
 
 namespace mpgc::rt {
 
-// [s] later - earlier for stamps that come off the bus: exact while the int64 difference exists,
-// else taken in double (a stamp near INT64_MIN would overflow the subtraction: undefined).
-inline double seconds_between(int64_t later_ns, int64_t earlier_ns) {
+// [ns] later - earlier for stamps that come off the bus, saturated at the int64 range (a stamp
+// near INT64_MIN would overflow the plain subtraction: undefined behaviour).
+inline int64_t ns_between(int64_t later_ns, int64_t earlier_ns) {
   int64_t d;
-  if (!__builtin_sub_overflow(later_ns, earlier_ns, &d)) return static_cast<double>(d) * 1e-9;
-  return (static_cast<double>(later_ns) - static_cast<double>(earlier_ns)) * 1e-9;
+  if (!__builtin_sub_overflow(later_ns, earlier_ns, &d)) return d;
+  return later_ns > earlier_ns ? std::numeric_limits<int64_t>::max() : std::numeric_limits<int64_t>::min();
+}
+// [s] the same in seconds (the components' `(now - stamp) * 1e-9`, bit for bit where it did not overflow).
+inline double seconds_between(int64_t later_ns, int64_t earlier_ns) {
+  return static_cast<double>(ns_between(later_ns, earlier_ns)) * 1e-9;
 }
 
 class Clock {

@@ -123,6 +123,9 @@ class Component {
   void count(const std::string& counter, uint64_t n = 1);
   uint64_t counter(const std::string& name) const;
   void set_health(msg::HealthState state, const std::string& detail);
+  // Health as the sum of independent problems: a detail marks `source` wrong (DEGRADED, the
+  // details joined by "; "), an empty one clears it; OK when none is left.
+  void set_problem(const std::string& source, const std::string& detail);
 
   // Wall clock only: takes and delivers at once every sample that has arrived, e.g. to read the
   // commands of a lockstep step before acting on that step's last acknowledgement.
@@ -244,6 +247,7 @@ class Component {
   uint64_t rejected_ = 0;
   msg::HealthState health_state_ = msg::HealthState::HEALTH_STARTING;
   std::string health_detail_;
+  std::map<std::string, std::string> problems_;  // set_problem: source -> detail
   int64_t next_health_ns_ = 0;
   uint32_t seq_ = 0;
   dds::Writer<msg::ComponentHealth>* health_writer_ = nullptr;

@@ -13,6 +13,9 @@
 //   * own state missing or older than nav_timeout: nothing to steer by, so the rudder goes
 //     amidships and the rpm is reduced to the feed-forward of safe_speed (never raised), reported
 //     as safe mode; the next fresh state ends it.
+//   * own position jumping farther than the ship can go (nav/jump_gate.hpp): refused, so the ship
+//     is steered by the last good state and after nav_timeout is in safe mode as above; a new place
+//     is taken once the old state is stale and a second state agrees with it.
 //
 //   GuidanceController gc(params);                   // validates every field
 //   gc.on_plan(plan, t); gc.on_nav(nav, t);          // "" or why the input was refused
@@ -29,6 +32,7 @@
 
 #include "mpgc/guidance_control/autopilot.hpp"
 #include "mpgc/guidance_control/path_follower.hpp"
+#include "mpgc/nav/jump_gate.hpp"
 #include "mpgc/ship/actuator_limits.hpp"
 
 namespace mpgc::guidance_control {
@@ -65,6 +69,10 @@ struct GuidanceControlParams {
   double plan_max_age = 60.0;  // [s] a plan older than this (from its stamp) is not followed: safe mode
                                //     (4 re-planning periods of 15 s)
   double nav_timeout = 5.0;    // [s] own state older than this -> safe mode, rudder amidships
+  // A position jump no ship can make is refused while the last state is younger than nav_timeout
+  // (nav/jump_gate.hpp; its own timeout is not used): the ship is steered by the last good state,
+  // then safe mode.
+  nav::JumpGateParams jumps;
   double safe_speed = 3.0;     // [m/s] speed in safe mode (KVLCC2 keeps steerage at about 6 kn)
   double arrival_speed = 0.0;  // [m/s] speed once the last waypoint is reached
   double max_dt = 1.0;         // [s] longest time step the integrators take (pauses are clipped)
@@ -144,6 +152,7 @@ class GuidanceController {
   bool started_ = false;
 
   std::optional<NavInput> nav_;
+  nav::JumpGate jumps_;
   double nav_t_ = 0.0;
   double last_t_ = 0.0;
   bool nav_lost_ = false;

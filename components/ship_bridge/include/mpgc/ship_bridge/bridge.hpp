@@ -12,6 +12,7 @@
 #include <string>
 
 #include "mpgc/geo/geodesy.hpp"
+#include "mpgc/nav/jump_gate.hpp"
 #include "mpgc/ship_bridge/gpsd_client.hpp"
 
 namespace mpgc::ship_bridge {
@@ -70,10 +71,8 @@ class NavFusion {
   int fix_mode_ = 0;
   int64_t fix_t_ = -1, last_any_fix_t_ = -1;
   bool receiver_invalid_ = false;
-  // After a rejected jump: the new place is taken only once the old fix is stale and a second fix
-  // agrees with the first, so consumers always see the position invalid in between.
-  bool jump_pending_ = false;
-  std::optional<std::pair<geo::NorthEast, int64_t>> candidate_;
+  // After a rejected jump the position is invalid until the gate takes the new place.
+  nav::JumpGate jumps_;
   double lat_ = 0, lon_ = 0, x_ = 0, y_ = 0;
   Stamped sog_, cog_, heading_, rot_, rudder_, rpm_;
   std::map<std::string, uint64_t> rejected_;
