@@ -11,6 +11,7 @@
 #include "mpgc/msg/sensors.hpp"
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/runtime/component.hpp"
+#include "mpgc/runtime/silence_watch.hpp"
 #include "mpgc/situational_awareness/situation.hpp"
 #include "mpgc/situational_awareness/tracker.hpp"
 #include "mpgc/topics.hpp"
@@ -32,6 +33,8 @@ struct Params {
   double origin_lat = 0.0;      // [deg]
   double origin_lon = 0.0;      // [deg]
   double own_timeout = 5.0;     // [s] no encounters from an own state older than this
+  double ais_timeout = 30.0;    // [s] sensors/ais heard, then silent this long: health DEGRADED
+  double radar_timeout = 10.0;  // [s] sensors/radar likewise
   mpgc::nav::JumpGateParams jumps;  // own position jumps (timeout: own_timeout)
   sa::TrackerParams tracker;
   cr::ColregParams colreg;
@@ -47,6 +50,10 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("origin.lon", &p.origin_lon, 0.0, "deg", -180.0, 180.0, "NED origin longitude (origin.source = param)");
   ps.add("own.timeout", &p.own_timeout, 5.0, "s", 0.1, 3600.0, "no encounters from an older own state");
   mpgc::nav::declare_params(ps, &p.jumps);
+  ps.add("sensors.ais_timeout", &p.ais_timeout, 30.0, "s", 1.0, 3600.0,
+         "AIS reports heard, then none this long: degraded (class B reports every 30 s, class A 2-10 s)");
+  ps.add("sensors.radar_timeout", &p.radar_timeout, 10.0, "s", 1.0, 3600.0,
+         "radar scans heard, then none this long: degraded (a scan every 2-3 s)");
   auto& t = p.tracker;
   ps.add("tracker.process_noise", &t.process_noise, 0.01, "m^2/s^3", 1e-8, 100.0, "CV white-acceleration PSD");
   ps.add("tracker.ais_pos_std", &t.ais_pos_std, 10.0, "m", 0.1, 1000.0, "AIS position sigma per axis");
@@ -123,6 +130,7 @@ int main(int argc, char** argv) {
   std::optional<sa::Tracker> tracker;
   std::optional<msg::NavState> own;
   std::optional<mpgc::nav::JumpGate> own_jumps;
+  mpgc::rt::SilenceWatch sensors;
   return mpgc::rt::run_component("situational_awareness", argc, argv, ps, [&](mpgc::rt::Component& c) {
     own_jumps.emplace(mpgc::nav::JumpGateParams{p.jumps.max_speed, p.jumps.margin, p.own_timeout});
     p.colreg.theta_o = geo::deg2rad(p.theta_o_deg);
@@ -162,12 +170,17 @@ int main(int argc, char** argv) {
           tracker->advance(s.header.stamp_ns);
         },
         check_nav);
+    // A sensor that falls silent is said on health (the tracks coast on the other one, then age out).
+    sensors.expect(mpgc::topics::kAis, p.ais_timeout);
+    sensors.expect(mpgc::topics::kRadar, p.radar_timeout);
     c.subscribe<msg::AisReport>(mpgc::topics::kAis, mpgc::dds::QosProfile::command(64),
                                 [&, report](const msg::AisReport& r) {
+                                  sensors.heard(mpgc::topics::kAis, c.now_ns());
                                   report(mpgc::topics::kAis, tracker->add_ais(to_input(r), c.now_ns()));
                                 });
     c.subscribe<msg::RadarScan>(mpgc::topics::kRadar, mpgc::dds::QosProfile::state(),
                                 [&, report](const msg::RadarScan& s) {
+                                  sensors.heard(mpgc::topics::kRadar, c.now_ns());
                                   report(mpgc::topics::kRadar, tracker->add_radar(to_input(s), c.now_ns()));
                                 });
 
@@ -180,12 +193,10 @@ int main(int argc, char** argv) {
       for (const auto& t : tracks) tl.tracks.push_back(to_msg(t, now));
       tracks_out.write(tl);
       c.count("cycles");
+      for (const auto& v : sensors.at(now)) c.set_problem(v.name, v.detail);
       const bool own_ok = own && mpgc::rt::seconds_between(now, own->header.stamp_ns) <= p.own_timeout;
-      if (!own_ok) {
-        c.set_health(msg::HealthState::HEALTH_DEGRADED, own ? "own state stale" : "no own state yet");
-        return;
-      }
-      c.set_health(msg::HealthState::HEALTH_OK, "");
+      c.set_problem("own", own_ok ? "" : own ? "own state stale" : "no own state yet");
+      if (!own_ok) return;
       // Own ship predicted to now at its velocity over ground.
       const double dt = mpgc::rt::seconds_between(now, own->header.stamp_ns);
       const bool vel = own->valid_mask & msg::NAV_VELOCITY_VALID;

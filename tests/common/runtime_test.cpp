@@ -15,6 +15,7 @@
 
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/runtime/component.hpp"
+#include "mpgc/runtime/silence_watch.hpp"
 #include "mpgc/testing.hpp"
 #include "mpgc/topics.hpp"
 
@@ -192,6 +193,28 @@ TEST(Runtime, StampDifferencesSaturateInsteadOfOverflowing) {
   EXPECT_EQ(rt::ns_between(lo, hi), lo);
   EXPECT_EQ(rt::ns_between(hi, lo), hi);
   EXPECT_GT(rt::seconds_between(0, lo), 9.2e9);  // "older than any limit", as a check wants
+}
+
+TEST(SilenceWatch, OnlyAnInputHeardAndThenSilentIsSilent) {
+  rt::SilenceWatch w;
+  w.expect("sensors/ais", 30.0);
+  w.expect("sensors/radar", 10.0);
+  const int64_t s = 1'000'000'000;
+  for (const auto& v : w.at(100 * s)) EXPECT_FALSE(v.silent) << v.name;  // never heard: no radar fitted
+  w.heard("sensors/radar", 100 * s);
+  w.heard("unknown", 100 * s);  // not expected: ignored
+  EXPECT_FALSE(w.at(110 * s)[1].silent);  // exactly the timeout
+  auto v = w.at(110 * s + 1);
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_EQ(v[1].name, "sensors/radar");
+  EXPECT_TRUE(v[1].silent);
+  EXPECT_EQ(v[1].detail, "sensors/radar silent for more than 10 s");
+  EXPECT_FALSE(v[0].silent);
+  w.heard("sensors/radar", 95 * s);  // an older sample does not make it younger
+  EXPECT_TRUE(w.at(110 * s + 1)[1].silent);
+  w.heard("sensors/radar", 111 * s);
+  EXPECT_FALSE(w.at(111 * s)[1].silent);
+  EXPECT_EQ(w.at(111 * s)[1].detail, "");
 }
 
 TEST(Runtime, ClockGoingBackwardsIsRejectedAndCounted) {
