@@ -36,6 +36,7 @@
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/runtime/health_board.hpp"
 #include "mpgc/scenario_runner/evaluation.hpp"
+#include "mpgc/scenario_runner/fault_run.hpp"
 #include "mpgc/scenario_runner/report.hpp"
 #include "mpgc/scenario_runner/scenario.hpp"
 #include "mpgc/topics.hpp"
@@ -480,27 +481,8 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
                                    });
 
   // Faults of the scenario and the health of the components: which is down, degraded or back.
-  for (const auto& f : s.faults) {
-    sr::FaultRecord r;
-    r.what = f.describe();
-    r.t_planned = f.at_s;
-    r.needs_recovery = f.kind == sr::Fault::Kind::kKill || f.kind == sr::Fault::Kind::kStop;
-    if (r.needs_recovery) r.component = f.component;
-    run.faults.push_back(r);
-  }
-  std::size_t next_fault = 0;
-  std::vector<Steady::time_point> fault_wall(run.faults.size());  // wall time of the kill or SIGCONT
   pid_t launcher = -1;
-  struct Stopped {
-    pid_t pid;
-    std::size_t fault;
-    double until_sim;                 // SIGCONT at this simulated time...
-    Steady::time_point until_wall{};  // ...or wall time (the simulator: its clock stops with it)
-    bool wall;
-    bool continued = false;
-  };
-  std::vector<Stopped> stopped;
-  std::mutex fault_mutex;  // `stopped` and run.faults: the record timer and the wall-clock watchdog
+  std::mutex fault_mutex;  // `faults`: the record timer, the health samples and the wall-clock watchdog
   // Only a run with faults has the fault topic (a secured bus grants it to nobody).
   dds::Writer<msg::FaultCommand>* fault_w =
       s.faults.empty() ? nullptr : &c.publisher<msg::FaultCommand>(mpgc::topics::kFaults, dds::QosProfile::command(16));
@@ -515,6 +497,31 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
     if (!o.quiet) std::printf("  %-28s sim %6.0f s  %s\n", s.name.c_str(), c.clock().now_s(), what.c_str());
     std::fflush(stdout);
   };
+  const auto run_start = Steady::now();
+  auto wall_s = [run_start] { return std::chrono::duration<double>(Steady::now() - run_start).count(); };
+  sr::FaultEffects fx;
+  fx.pid_of = [&](const std::string& component) { return static_cast<int>(component_pid(launcher, component)); };
+  fx.signal = [](int pid, int sig) { kill(pid, sig); };
+  fx.command = [&](const sr::Fault& f) {
+    msg::FaultCommand fc;
+    fc.header = c.header();
+    fc.kind = f.kind == sr::Fault::Kind::kSilence      ? msg::FaultKind::FAULT_SILENCE_TOPIC
+              : f.kind == sr::Fault::Kind::kAisOutage   ? msg::FaultKind::FAULT_AIS_OUTAGE
+              : f.kind == sr::Fault::Kind::kGnssDropout ? msg::FaultKind::FAULT_GNSS_DROPOUT
+                                                        : msg::FaultKind::FAULT_POSITION_JUMP;
+    fc.topic = f.topic;
+    fc.mmsi = f.mmsi;
+    fc.duration = f.duration_s;
+    fc.dx = f.dx;
+    fc.dy = f.dy;
+    fault_w->write(fc);
+  };
+  fx.killed = [&](const std::string& component) {
+    std::lock_guard<std::mutex> hg(health_mutex);
+    board.process_gone(component, "killed (fault injected)", wall_ns());
+  };
+  fx.say = say;
+  sr::FaultRun faults(s.faults, fx);
   std::map<std::string, rt::Status> said;  // "up" is news only after something else was said
   auto print_health_changes = [&] {  // health_mutex held
     for (const auto& v : board.changes(wall_ns())) {
@@ -543,67 +550,8 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
       print_health_changes();
     }
     std::lock_guard<std::mutex> g(fault_mutex);
-    for (auto& f : run.faults)
-      if (f.component == h.component && std::isfinite(f.t) && !std::isfinite(f.t_recovered)) {
-        const bool was_stop = std::any_of(stopped.begin(), stopped.end(), [&](const Stopped& x) {
-          return x.continued && &run.faults[x.fault] == &f;
-        });
-        if (restarted || was_stop) {
-          f.t_recovered = now;
-          f.wall_recovery = std::chrono::duration<double>(Steady::now() - fault_wall[&f - run.faults.data()]).count();
-        }
-      }
+    faults.on_health(h.component, restarted, now, wall_s());
   });
-  // Injects the faults that are due at simulated time t (the record timer's).
-  auto inject_faults = [&](double t) {
-    std::lock_guard<std::mutex> g(fault_mutex);
-    for (auto& k : stopped)
-      if (!k.continued && !k.wall && t >= k.until_sim) {
-        kill(k.pid, SIGCONT);
-        k.continued = true;
-        fault_wall[k.fault] = Steady::now();
-        run.faults[k.fault].t_end = t;
-        say("fault: " + s.faults[k.fault].component + " continued (SIGCONT)");
-      }
-    for (; next_fault < s.faults.size() && t >= s.faults[next_fault].at_s; ++next_fault) {
-      const sr::Fault& f = s.faults[next_fault];
-      sr::FaultRecord& r = run.faults[next_fault];
-      if (f.kind == sr::Fault::Kind::kKill || f.kind == sr::Fault::Kind::kStop) {
-        const pid_t pid = component_pid(launcher, f.component);
-        if (pid <= 0) {
-          say("fault: " + f.describe() + " not possible: " + f.component + " is not running");
-          continue;  // never happened: reported as such
-        }
-        kill(pid, f.kind == sr::Fault::Kind::kKill ? SIGKILL : SIGSTOP);
-        fault_wall[next_fault] = Steady::now();
-        if (f.kind == sr::Fault::Kind::kKill) {
-          std::lock_guard<std::mutex> hg(health_mutex);
-          board.process_gone(f.component, "killed (fault injected)", wall_ns());
-        }
-        if (f.kind == sr::Fault::Kind::kStop) {
-          const bool wall = f.component == "ship_simulator";
-          stopped.push_back({pid, next_fault, t + f.duration_s,
-                             Steady::now() + std::chrono::milliseconds(static_cast<int64_t>(f.duration_s * 1000)), wall});
-        }
-      } else {
-        msg::FaultCommand fc;
-        fc.header = c.header();
-        fc.kind = f.kind == sr::Fault::Kind::kSilence      ? msg::FaultKind::FAULT_SILENCE_TOPIC
-                  : f.kind == sr::Fault::Kind::kAisOutage   ? msg::FaultKind::FAULT_AIS_OUTAGE
-                  : f.kind == sr::Fault::Kind::kGnssDropout ? msg::FaultKind::FAULT_GNSS_DROPOUT
-                                                            : msg::FaultKind::FAULT_POSITION_JUMP;
-        fc.topic = f.topic;
-        fc.mmsi = f.mmsi;
-        fc.duration = f.duration_s;
-        fc.dx = f.dx;
-        fc.dy = f.dy;
-        fault_w->write(fc);
-        r.t_end = t + f.duration_s;
-      }
-      r.t = t;
-      say("fault: " + f.describe());
-    }
-  };
 
   msg::MissionGoal goal;
   goal.header.source = "scenario_runner";
@@ -645,7 +593,10 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
                                     k.cut.host.c_str(), k.cut.duration_s);
         }
     }
-    if (!s.faults.empty()) inject_faults(t);
+    if (!s.faults.empty()) {
+      std::lock_guard<std::mutex> g(fault_mutex);
+      faults.at_sim(t, wall_s());
+    }
     if (run.t.empty()) {
       run.own.id = 0;
       run.own.length = truth.own.length > 0 ? truth.own.length : s.lpp;
@@ -696,14 +647,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
       }
       {
         std::lock_guard<std::mutex> g(fault_mutex);
-        for (auto& k : stopped)
-          if (!k.continued && k.wall && Steady::now() >= k.until_wall) {
-            kill(k.pid, SIGCONT);
-            k.continued = true;
-            fault_wall[k.fault] = Steady::now();
-            run.faults[k.fault].t_end = c.clock().now_s();
-            last_progress = Steady::now();  // the stalled clock was the stop's doing
-          }
+        if (faults.at_wall(wall_s(), c.clock().now_s())) last_progress = Steady::now();  // the stalled clock was the stop's doing
       }
       {
         std::lock_guard<std::mutex> g(health_mutex);
@@ -729,9 +673,9 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   const int rc = c.spin();
   done = true;
   watchdog.join();
-  for (auto& k : stopped)
-    if (!k.continued) kill(k.pid, SIGCONT);  // a stopped process cannot stop
+  faults.release();  // a stopped process cannot stop
   stop_launcher(launcher);
+  run.faults = faults.records();
   const double wall = std::chrono::duration<double>(Steady::now() - wall_start).count();
   if (lab) {
     for (auto& k : cuts)
