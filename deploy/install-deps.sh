@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config python3 git
   # middleware and libraries (CMakeLists.txt find_package)
   cyclonedds-dev cyclonedds-tools
-  libeigen3-dev libfcl-dev libspdlog-dev libyaml-cpp-dev libcli11-dev libnanoflann-dev
+  libeigen3-dev libfcl-dev libspdlog-dev libyaml-cpp-dev libcli11-dev libnanoflann-dev nlohmann-json3-dev
   libgeographiclib-dev libgdal-dev libompl-dev
   # tests and benchmarks; clang and libFuzzer for the long fuzz runs (tests/fuzz/README.md)
   libgtest-dev libgmock-dev clang libfuzzer-14-dev

@@ -29,6 +29,7 @@
 
 #include "deployment.hpp"
 #include "mpgc/geo/angles.hpp"
+#include "mpgc/json/json.hpp"
 #include "mpgc/msg/control.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
@@ -682,30 +683,26 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
       if (k.begun && !k.ended) lab->set_cut(k.cut.host, false), k.ended = true, k.sim_end = c.clock().now_s();
     const auto netem = lab->stop_helpers();
     // What the network did, beside metrics.json: the hosts, the link, every cut and netem's counts.
-    std::ofstream nj(dir / "network.json");
-    nj << "{\n  \"deployment\": " << yaml_str(o.hosts->origin) << ",\n  \"hosts\": {";
-    for (size_t i = 0; i < o.hosts->hosts.size(); ++i) {
-      const auto& h = o.hosts->hosts[i];
-      nj << (i ? ", " : "") << yaml_str(h.name) << ": {\"address\": " << yaml_str(h.address) << ", \"components\": [";
-      for (size_t j = 0; j < h.components.size(); ++j) nj << (j ? ", " : "") << yaml_str(h.components[j]);
-      nj << "]}";
-    }
-    nj << "},\n  \"links\": {";
-    size_t li = 0;
-    for (const auto& [h, l] : o.links) nj << (li++ ? ", " : "") << yaml_str(h) << ": " << yaml_str(l.text());
-    nj << "},\n  \"link_seed\": " << o.link_seed
-       << ",\n  \"secure\": " << (o.secure.empty() ? "false" : "true") << ",\n  \"cuts\": [";
-    for (size_t i = 0; i < cuts.size(); ++i) {
-      const auto& k = cuts[i];
-      nj << (i ? ", " : "") << "{\"host\": " << yaml_str(k.cut.host) << ", \"at_s\": " << k.cut.at_s
-         << ", \"wall_s\": " << k.cut.duration_s << ", \"happened\": " << (k.begun ? "true" : "false")
-         << ", \"sim_begin_s\": " << k.sim_begin << ", \"sim_end_s\": " << k.sim_end
-         << ", \"plans_during\": " << plans_between(run, k.sim_begin, k.sim_end) << "}";
-    }
-    nj << "],\n  \"netem\": {";
-    size_t i = 0;
-    for (const auto& [h, line] : netem) nj << (i++ ? ", " : "") << yaml_str(h) << ": " << yaml_str(line);
-    nj << "}\n}\n";
+    mpgc::json::Json nj;
+    nj["deployment"] = o.hosts->origin;
+    nj["hosts"] = mpgc::json::Json::object();
+    for (const auto& h : o.hosts->hosts) nj["hosts"][h.name] = {{"address", h.address}, {"components", h.components}};
+    nj["links"] = mpgc::json::Json::object();
+    for (const auto& [h, l] : o.links) nj["links"][h] = l.text();
+    nj["link_seed"] = o.link_seed;
+    nj["secure"] = !o.secure.empty();
+    nj["cuts"] = mpgc::json::Json::array();
+    for (const auto& k : cuts)
+      nj["cuts"].push_back({{"host", k.cut.host},
+                            {"at_s", mpgc::json::number(k.cut.at_s)},
+                            {"wall_s", mpgc::json::number(k.cut.duration_s)},
+                            {"happened", k.begun},
+                            {"sim_begin_s", mpgc::json::number(k.sim_begin)},
+                            {"sim_end_s", mpgc::json::number(k.sim_end)},
+                            {"plans_during", plans_between(run, k.sim_begin, k.sim_end)}});
+    nj["netem"] = mpgc::json::Json::object();
+    for (const auto& [h, line] : netem) nj["netem"][h] = line;
+    std::ofstream(dir / "network.json") << nj.dump(2) << "\n";
     for (const auto& k : cuts)
       if (k.begun) out.notes.push_back("cut " + k.cut.host + " at sim " + num_text(k.sim_begin) + " s for " +
                                        num_text(k.cut.duration_s, "%.1f") + " s wall (sim " + num_text(k.sim_begin) +

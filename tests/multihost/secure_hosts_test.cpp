@@ -17,6 +17,8 @@
 #include <string>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "mpgc/testing.hpp"
 
 namespace fs = std::filesystem;
@@ -111,5 +113,5 @@ TEST(SecureHosts, SecuredThreeHostLoopIsTheOpenLoopAndIntrudersGetNothingIn) {
   const std::string b = slurp(fs::path(secured) / "dnv_02_CR-GW" / "timeseries.csv");
   ASSERT_GT(a.size(), 1000u);
   EXPECT_TRUE(a == b) << "the secured three-host run differs from the open single-host run";
-  EXPECT_NE(slurp(fs::path(secured) / "dnv_02_CR-GW" / "network.json").find("\"secure\": true"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(slurp(fs::path(secured) / "dnv_02_CR-GW" / "network.json")).at("secure"), true);
 }

@@ -7,6 +7,8 @@
 #include <map>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/situational_awareness/dnv_situation.hpp"
@@ -212,6 +214,12 @@ std::string last_line(const std::string& s) {
   const auto b = s.rfind('\n', e);
   return s.substr(b == std::string::npos ? 0 : b + 1, e - (b == std::string::npos ? 0 : b + 1) + 1);
 }
+// The closing JSON line {"agree": N, "total": M} as (N, M); it must be that object and no more.
+std::pair<int, int> agreement(const std::string& out) {
+  const auto j = nlohmann::json::parse(last_line(out));
+  EXPECT_EQ(j.size(), 2u) << j;
+  return {j.at("agree").get<int>(), j.at("total").get<int>()};
+}
 }  // namespace
 
 TEST(ClassifyTool, PrintsTargetsAndAgreementLine) {
@@ -219,16 +227,16 @@ TEST(ClassifyTool, PrintsTargetsAndAgreementLine) {
   const std::string files = situation_path("01") + " " + situation_path("11") + " " + situation_path("55");
   auto [rc, out] = run(exe + " --settings " + shared_data("encounters/dnv/encounter_settings.json") + " " + files);
   EXPECT_EQ(rc, 0);
-  EXPECT_EQ(last_line(out), "{\"agree\": 6, \"total\": 6}") << out;
+  EXPECT_EQ(agreement(out), std::make_pair(6, 6)) << out;
   EXPECT_NE(out.find("desired head-on [agree]"), std::string::npos);
   EXPECT_NE(out.find("CPA "), std::string::npos);
   // Seed 000 sectors: situation 11's first target is a fine crossing, head-on for theta_h = 22.5.
   std::tie(rc, out) = run(exe + " " + files);
-  EXPECT_EQ(last_line(out), "{\"agree\": 5, \"total\": 6}") << out;
+  EXPECT_EQ(agreement(out), std::make_pair(5, 6)) << out;
   // A malformed file: error on stderr, exit 1, the others still counted.
   const std::string bad = ::testing::TempDir() + "sa_tool_bad.json";
   std::ofstream(bad) << "{";
   std::tie(rc, out) = run(exe + " " + bad + " " + situation_path("01"));
   EXPECT_EQ(rc, 1);
-  EXPECT_EQ(last_line(out), "{\"agree\": 1, \"total\": 1}") << out;
+  EXPECT_EQ(agreement(out), std::make_pair(1, 1)) << out;
 }

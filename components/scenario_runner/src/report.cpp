@@ -10,11 +10,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mpgc/json/json.hpp"
+
 namespace mpgc::scenario_runner {
 
 namespace {
 
-// Shortest text that reads back to the same double; null when not finite (JSON has no NaN).
+// CSV number: the shortest text that reads back to the same double ("null" when not finite).
 std::string num(double v) {
   if (!std::isfinite(v)) return "null";
   char buf[32];
@@ -24,31 +26,6 @@ std::string num(double v) {
   }
   return buf;
 }
-
-std::string quote(const std::string& s) {
-  std::string r = "\"";
-  for (const unsigned char c : s) {
-    switch (c) {
-      case '"': r += "\\\""; break;
-      case '\\': r += "\\\\"; break;
-      case '\n': r += "\\n"; break;
-      case '\r': r += "\\r"; break;
-      case '\t': r += "\\t"; break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          r += buf;
-        } else {
-          r += static_cast<char>(c);
-        }
-    }
-  }
-  return r + "\"";
-}
-
-const char* boolean(bool b) { return b ? "true" : "false"; }
-std::string deg(double rad) { return num(rad * 180.0 / geo::kPi); }
 
 // CSV cell: empty when not finite.
 std::string cell(double v) { return std::isfinite(v) ? num(v) : ""; }
@@ -64,76 +41,85 @@ void ReportOptions::validate() const {
 }
 
 void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& opt) {
-  o << "{\n";
-  o << "  \"scenario\": " << quote(opt.scenario) << ",\n";
-  o << "  \"passed\": " << boolean(m.passed) << ",\n";
-  o << "  \"failures\": [";
-  for (std::size_t i = 0; i < m.failures.size(); ++i) o << (i ? ", " : "") << quote(m.failures[i]);
-  o << "],\n";
-  o << "  \"goal_reached\": " << boolean(m.goal_reached) << ",\n";
-  o << "  \"time_to_goal_s\": " << num(m.t_goal) << ",\n";
-  o << "  \"min_distance_m\": {\"overall\": " << num(m.min_distance) << ", \"fixed\": " << num(m.min_distance_fixed)
-    << ", \"targets\": {";
-  for (std::size_t i = 0; i < m.min_distance_targets.size(); ++i)
-    o << (i ? ", " : "") << "\"" << m.min_distance_targets[i].target_id
-      << "\": " << num(m.min_distance_targets[i].min_distance);
-  o << "}},\n";
-  o << "  \"safety_distance_m\": " << num(m.safety_distance) << ",\n";
-  o << "  \"safety_violation_s\": " << num(m.safety_violation_s) << ",\n";
-  o << "  \"path_length_m\": " << num(m.path_length) << ",\n";
-  o << "  \"straight_line_m\": " << num(m.straight_line) << ",\n";
-  o << "  \"planning_ms\": {\"median\": " << num(m.planning.median_ms) << ", \"p95\": " << num(m.planning.p95_ms)
-    << ", \"max\": " << num(m.planning.max_ms) << "},\n";
-  o << "  \"replans\": " << m.replans << ",\n";
-  o << "  \"relaxed_plans\": " << m.relaxed_plans << ",\n";
-  o << "  \"no_path_plans\": " << m.no_path_plans << ",\n";
-  o << "  \"tracking_rmse_m\": " << num(m.tracking_rmse) << ",\n";
-  o << "  \"wall_s\": " << num(m.wall_s) << ",\n";
-  o << "  \"sim_s\": " << num(m.sim_s) << ",\n";
-  o << "  \"evaluation_scale\": " << num(m.scale) << ",\n";
-  o << "  \"encounters\": [";
-  for (std::size_t i = 0; i < m.encounters.size(); ++i) {
-    const EncounterResult& e = m.encounters[i];
-    o << (i ? ",\n" : "\n") << "    {\"target_id\": " << e.target_id << ", \"encountered\": " << boolean(e.encountered)
-      << ", \"situation\": " << quote(colreg::to_string(e.situation)) << ", \"role\": " << quote(to_string(e.role))
-      << ",\n     \"t_start_s\": " << num(e.t_start) << ", \"range_start_m\": " << num(e.range_start)
-      << ", \"beta_start_deg\": " << deg(e.beta_start) << ", \"alpha_start_deg\": " << deg(e.alpha_start)
-      << ", \"dcpa_start_m\": " << num(e.dcpa_start) << ",\n     \"cpa_m\": " << num(e.cpa)
-      << ", \"t_cpa_s\": " << num(e.t_cpa) << ", \"passing_side\": " << quote(to_string(e.passing_side))
-      << ", \"bow_crossing_m\": " << num(e.bow_crossing) << ",\n     \"t_manoeuvre_s\": " << num(e.t_manoeuvre)
-      << ", \"manoeuvre_side\": " << quote(to_string(e.manoeuvre_side))
-      << ", \"max_starboard_change_deg\": " << deg(e.max_starboard_change)
-      << ", \"max_port_change_deg\": " << deg(e.max_port_change)
-      << ", \"max_speed_reduction\": " << num(e.max_speed_reduction) << ",\n     \"verdicts\": {\"turned_starboard\": "
-      << quote(to_string(e.turned_starboard)) << ", \"passed_port_to_port\": " << quote(to_string(e.passed_port_to_port))
-      << ", \"not_crossed_ahead\": " << quote(to_string(e.not_crossed_ahead))
-      << ", \"kept_clear\": " << quote(to_string(e.kept_clear))
-      << ", \"held_course_and_speed\": " << quote(to_string(e.held_course_and_speed))
-      << "},\n     \"t_hold_end_s\": " << num(e.t_hold_end)
-      << ", \"conflicting_obligation\": " << boolean(e.conflicting_obligation)
-      << ", \"compliant\": " << boolean(e.compliant) << "}";
+  using json::Json;
+  using json::number;
+  auto deg = [](double rad) { return number(rad * 180.0 / geo::kPi); };
+  Json j;
+  j["scenario"] = opt.scenario;
+  j["passed"] = m.passed;
+  j["failures"] = m.failures;
+  j["goal_reached"] = m.goal_reached;
+  j["time_to_goal_s"] = number(m.t_goal);
+  Json targets = Json::object();
+  for (const TargetDistance& d : m.min_distance_targets) targets[std::to_string(d.target_id)] = number(d.min_distance);
+  j["min_distance_m"] = {{"overall", number(m.min_distance)}, {"fixed", number(m.min_distance_fixed)}, {"targets", targets}};
+  j["safety_distance_m"] = number(m.safety_distance);
+  j["safety_violation_s"] = number(m.safety_violation_s);
+  j["path_length_m"] = number(m.path_length);
+  j["straight_line_m"] = number(m.straight_line);
+  j["planning_ms"] = {{"median", number(m.planning.median_ms)}, {"p95", number(m.planning.p95_ms)},
+                      {"max", number(m.planning.max_ms)}};
+  j["replans"] = m.replans;
+  j["relaxed_plans"] = m.relaxed_plans;
+  j["no_path_plans"] = m.no_path_plans;
+  j["tracking_rmse_m"] = number(m.tracking_rmse);
+  j["wall_s"] = number(m.wall_s);
+  j["sim_s"] = number(m.sim_s);
+  j["evaluation_scale"] = number(m.scale);
+  Json encounters = Json::array();
+  for (const EncounterResult& e : m.encounters) {
+    encounters.push_back({{"target_id", e.target_id},
+                          {"encountered", e.encountered},
+                          {"situation", colreg::to_string(e.situation)},
+                          {"role", to_string(e.role)},
+                          {"t_start_s", number(e.t_start)},
+                          {"range_start_m", number(e.range_start)},
+                          {"beta_start_deg", deg(e.beta_start)},
+                          {"alpha_start_deg", deg(e.alpha_start)},
+                          {"dcpa_start_m", number(e.dcpa_start)},
+                          {"cpa_m", number(e.cpa)},
+                          {"t_cpa_s", number(e.t_cpa)},
+                          {"passing_side", to_string(e.passing_side)},
+                          {"bow_crossing_m", number(e.bow_crossing)},
+                          {"t_manoeuvre_s", number(e.t_manoeuvre)},
+                          {"manoeuvre_side", to_string(e.manoeuvre_side)},
+                          {"max_starboard_change_deg", deg(e.max_starboard_change)},
+                          {"max_port_change_deg", deg(e.max_port_change)},
+                          {"max_speed_reduction", number(e.max_speed_reduction)},
+                          {"verdicts",
+                           {{"turned_starboard", to_string(e.turned_starboard)},
+                            {"passed_port_to_port", to_string(e.passed_port_to_port)},
+                            {"not_crossed_ahead", to_string(e.not_crossed_ahead)},
+                            {"kept_clear", to_string(e.kept_clear)},
+                            {"held_course_and_speed", to_string(e.held_course_and_speed)}}},
+                          {"t_hold_end_s", number(e.t_hold_end)},
+                          {"conflicting_obligation", e.conflicting_obligation},
+                          {"compliant", e.compliant}});
   }
-  o << (m.encounters.empty() ? "],\n" : "\n  ],\n");
+  j["encounters"] = std::move(encounters);
   // Faults and recoveries: each fault, then per component how often it was killed and came back.
-  o << "  \"faults\": [";
+  Json faults = Json::array();
   std::map<std::string, std::pair<int, int>> per_component;  // killed or stopped, recovered
-  for (std::size_t i = 0; i < m.faults.size(); ++i) {
-    const FaultRecord& f = m.faults[i];
-    o << (i ? ",\n" : "\n") << "    {\"what\": " << quote(f.what) << ", \"component\": " << quote(f.component)
-      << ", \"planned_s\": " << num(f.t_planned) << ", \"t_s\": " << num(f.t) << ", \"end_s\": " << num(f.t_end)
-      << ", \"recovered_s\": " << num(f.t_recovered) << ", \"recovery_s\": "
-      << num(f.needs_recovery ? f.t_recovered - f.t : kNaN) << ", \"recovery_wall_s\": " << num(f.wall_recovery) << "}";
+  for (const FaultRecord& f : m.faults) {
+    faults.push_back({{"what", f.what},
+                      {"component", f.component},
+                      {"planned_s", number(f.t_planned)},
+                      {"t_s", number(f.t)},
+                      {"end_s", number(f.t_end)},
+                      {"recovered_s", number(f.t_recovered)},
+                      {"recovery_s", number(f.needs_recovery ? f.t_recovered - f.t : kNaN)},
+                      {"recovery_wall_s", number(f.wall_recovery)}});
     if (f.needs_recovery) {
       auto& pc = per_component[f.component];
       ++pc.first;
       pc.second += std::isfinite(f.t_recovered) ? 1 : 0;
     }
   }
-  o << (m.faults.empty() ? "],\n" : "\n  ],\n") << "  \"recoveries\": {";
-  std::size_t k = 0;
-  for (const auto& [c, n] : per_component)
-    o << (k++ ? ", " : "") << quote(c) << ": {\"faulted\": " << n.first << ", \"recovered\": " << n.second << "}";
-  o << "}\n}\n";
+  j["faults"] = std::move(faults);
+  Json recoveries = Json::object();
+  for (const auto& [c, n] : per_component) recoveries[c] = {{"faulted", n.first}, {"recovered", n.second}};
+  j["recoveries"] = std::move(recoveries);
+  o << j.dump(2) << "\n";
 }
 
 void write_timeseries_csv(std::ostream& o, const RunRecord& run) {

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mpgc/geo/angles.hpp"
+#include "mpgc/json/json.hpp"
 #include "mpgc/ship_simulator/model_factory.hpp"
 #include "mpgc/ship_simulator/trials.hpp"
 
@@ -32,14 +33,6 @@ std::vector<double> parse_list(const std::string& text, const std::string& what)
   }
   if (out.empty()) throw std::invalid_argument(what + ": empty list");
   return out;
-}
-
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
 }
 
 }  // namespace
@@ -83,29 +76,38 @@ int main(int argc, char** argv) {
     c.dt = dt;
     c.approach_speed = speed_kn > 0.0 ? speed_kn * geo::kKnot : 7.97;
     c.rpm = sim::straight_rpm(*model, c.approach_speed);
-    std::ostringstream js;
-    js << "{\"model\":\"" << model->name() << "\",\"approach_speed_m_s\":" << json_number(c.approach_speed)
-       << ",\"rpm\":" << json_number(c.rpm) << ",\"dt_s\":" << json_number(c.dt);
+    using mpgc::json::number;
+    mpgc::json::Json js;  // one line; a figure the trial could not measure is null
+    js["model"] = model->name();
+    js["approach_speed_m_s"] = number(c.approach_speed);
+    js["rpm"] = number(c.rpm);
+    js["dt_s"] = number(c.dt);
     if (*tc) {
       const double side = tc_side == "starboard" ? 1.0 : -1.0;
       const auto r = sim::turning_circle(*model, side * geo::deg2rad(tc_rudder), c);
-      js << ",\"trial\":\"turning-circle\",\"side\":\"" << tc_side << "\",\"rudder_deg\":" << json_number(tc_rudder)
-         << ",\"advance_m\":" << json_number(r.advance_m) << ",\"transfer_m\":" << json_number(r.transfer_m)
-         << ",\"tactical_diameter_m\":" << json_number(r.tactical_diameter_m)
-         << ",\"steady_diameter_m\":" << json_number(r.steady_diameter_m)
-         << ",\"speed_ratio_steady\":" << json_number(r.speed_ratio_steady)
-         << ",\"time_to_90_s\":" << json_number(r.time_to_90_s) << ",\"time_to_180_s\":" << json_number(r.time_to_180_s)
-         << ",\"steady_rate_deg_s\":" << json_number(r.steady_rate_deg_s) << ",\"length_m\":" << json_number(model->length());
+      js["trial"] = "turning-circle";
+      js["side"] = tc_side;
+      js["rudder_deg"] = number(tc_rudder);
+      js["advance_m"] = number(r.advance_m);
+      js["transfer_m"] = number(r.transfer_m);
+      js["tactical_diameter_m"] = number(r.tactical_diameter_m);
+      js["steady_diameter_m"] = number(r.steady_diameter_m);
+      js["speed_ratio_steady"] = number(r.speed_ratio_steady);
+      js["time_to_90_s"] = number(r.time_to_90_s);
+      js["time_to_180_s"] = number(r.time_to_180_s);
+      js["steady_rate_deg_s"] = number(r.steady_rate_deg_s);
+      js["length_m"] = number(model->length());
     } else if (*zz) {
       const int side = zz_side == "starboard" ? 1 : -1;
       const auto r = sim::zigzag(*model, geo::deg2rad(zz_angle), side, c, 3);
-      js << ",\"trial\":\"zigzag\",\"side\":\"" << zz_side << "\",\"angle_deg\":" << json_number(zz_angle)
-         << ",\"first_overshoot_deg\":" << json_number(r.overshoots_deg.at(0))
-         << ",\"second_overshoot_deg\":" << json_number(r.overshoots_deg.at(1))
-         << ",\"third_overshoot_deg\":" << json_number(r.overshoots_deg.at(2)) << ",\"reversal_times_s\":[";
-      for (std::size_t i = 0; i < r.reversal_times_s.size(); ++i)
-        js << (i ? "," : "") << json_number(r.reversal_times_s[i]);
-      js << "]";
+      js["trial"] = "zigzag";
+      js["side"] = zz_side;
+      js["angle_deg"] = number(zz_angle);
+      js["first_overshoot_deg"] = number(r.overshoots_deg.at(0));
+      js["second_overshoot_deg"] = number(r.overshoots_deg.at(1));
+      js["third_overshoot_deg"] = number(r.overshoots_deg.at(2));
+      js["reversal_times_s"] = mpgc::json::Json::array();
+      for (const double t : r.reversal_times_s) js["reversal_times_s"].push_back(number(t));
     } else {
       std::vector<double> rud = parse_list(rudders_text, "--rudders-deg"), r0 = parse_list(r0_text, "--r0-deg-s");
       for (double& d : rud) d = geo::deg2rad(d);
@@ -115,11 +117,12 @@ int main(int argc, char** argv) {
       if (!out) throw std::runtime_error("cannot write '" + out_path + "'");
       sim::write_tables_csv(out, rows);
       if (!out) throw std::runtime_error("write to '" + out_path + "' failed");
-      js << ",\"trial\":\"table\",\"out\":\"" << out_path << "\",\"rows\":" << rows.size()
-         << ",\"trials\":" << rud.size() * r0.size();
+      js["trial"] = "table";
+      js["out"] = out_path;
+      js["rows"] = rows.size();
+      js["trials"] = rud.size() * r0.size();
     }
-    js << "}";
-    std::cout << js.str() << std::endl;
+    std::cout << js.dump() << std::endl;
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "mpgc trial: " << e.what() << "\n";

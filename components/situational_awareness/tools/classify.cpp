@@ -1,6 +1,6 @@
 // mpgc_classify (./mpgc classify FILE...): COLREG classification, CPA and TCPA of every target of
 // DNV ship-traffic-generator situations, next to the desiredEncounterType of the matching input
-// file. Ends with one JSON line {"agree": N, "total": M} over the targets that have a desired type.
+// file. Ends with one JSON line {"agree":N,"total":M} over the targets that have a desired type.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mpgc/colreg/colreg.hpp"
+#include "mpgc/json/json.hpp"
 #include "mpgc/situational_awareness/dnv_situation.hpp"
 
 namespace cr = mpgc::colreg;
@@ -78,6 +79,6 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mpgc_classify: %s\n", e.what());
     }
   }
-  std::printf("{\"agree\": %d, \"total\": %d}\n", agree, total);
+  std::printf("%s\n", mpgc::json::Json{{"agree", agree}, {"total", total}}.dump().c_str());
   return failed ? 1 : 0;
 }

@@ -10,7 +10,8 @@
 //   scenario_runner::write_report("out/paper_s1_colreg", run, m, opt);
 //
 // Keys of metrics.json are snake_case with the unit as suffix and stay stable (see
-// write_metrics_json); non-finite numbers are written as null.
+// write_metrics_json); non-finite numbers (a value that does not exist, e.g. no time to a goal not
+// reached) are written as null. Written through nlohmann-json (mpgc/json/json.hpp).
 #pragma once
 
 #include <iosfwd>
