@@ -17,7 +17,7 @@
 #include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/encounters.hpp"
 #include "mpgc/opp/memory.hpp"
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/node.hpp"
 #include "mpgc/opp/replan.hpp"
 #include "mpgc/opp/validate.hpp"
 #include "mpgc/runtime/component.hpp"
@@ -28,82 +28,6 @@ namespace opp = mpgc::opp;
 namespace om = mpgc::obstacle_manager;
 
 namespace {
-
-struct NodeParams {
-  opp::Params planner;
-  opp::ReplanParams replan;
-  int seed = 1;                  // [-] base seed; plan k uses seed + k
-  double check_period = 0.5;     // [s] how often the re-planning conditions are checked
-  double bounds_margin = 3000;   // [m] sampling box around start and goal
-  double arrival_radius = 100;   // [m] no more plans once the own ship is this close to the goal
-  double default_speed = 5;      // [m/s] when neither the goal nor the own state gives a speed
-  double max_state_age = 5;      // [s] own state older than this is not planned from
-  mpgc::nav::JumpGateParams jumps;  // own position jumps are not planned from (timeout: max_state_age)
-  double max_obstacle_age = 10;  // [s] moving obstacles older than this are not planned with
-  bool warm_start = true;        // seed the tree with the previous path of the same goal
-  bool pin_encounters = true;    // hold each leg to the obligation fixed at the encounter's start
-  double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
-  double encounter_tcpa = 0;     // [s] risk of collision within this TCPA pins an encounter (0: the
-                                 //     plan's horizon, the straight-line time to the goal)
-  std::string memory_file;       // what a restart must remember (memory.hpp); "" = nothing kept
-  double latency_per_iteration = 0;  // [s] simulated time one iteration takes (late plans); 0 = at once
-};
-
-void declare(mpgc::rt::ParamSet& ps, NodeParams& p) {
-  opp::Params& q = p.planner;
-  ps.add("replan.period", &p.replan.period, 15.0, "s", 0.1, 3600.0, "fixed re-planning period (seed 000: 15 s)");
-  ps.add("replan.track_threshold", &p.replan.track_threshold, 300.0, "m", 1.0, 1e5,
-         "re-plan at once when a target's predicted position moved this far from the last plan's prediction");
-  ps.add("replan.track_horizon", &p.replan.track_horizon, 300.0, "s", 0.0, 3600.0, "prediction horizon of that comparison");
-  ps.add("replan.min_interval", &p.replan.min_interval, 2.0, "s", 0.0, 600.0, "event-triggered plans no closer than this");
-  ps.add("replan.check_period", &p.check_period, 0.5, "s", 0.01, 60.0, "how often the conditions are checked");
-  ps.add("plan.time_budget", &q.time_budget, 0.5, "s", 0.001, 60.0, "wall-time budget of one plan");
-  ps.add("plan.max_iterations", &q.max_iterations, 20000, "-", 1, 2000000, "RRT* iterations per plan");
-  ps.add("plan.compliant_share", &q.compliant_share, 0.5, "-", 0.01, 1.0,
-         "budget share after which a compliant pass without any solution is relaxed");
-  ps.add("plan.restart_after", &q.restart_after, 1000, "-", 0, 10000000,
-         "iterations without improvement before a fresh tree is grown (0 = never)");
-  ps.add("plan.seed", &p.seed, 1, "-", 0, 2147483647, "base seed (plan k uses seed + k)");
-  ps.add("plan.step", &q.step, 500.0, "m", 1.0, 1e5, "RRT* steer step");
-  ps.add("plan.goal_bias", &q.goal_bias, 0.05, "-", 0.0, 1.0, "probability of sampling the goal");
-  ps.add("plan.rewire_factor", &q.rewire_factor, 1.1, "-", 1.0, 10.0, "scales the k-nearest neighbourhood");
-  ps.add("plan.max_turn", &q.max_turn, mpgc::geo::deg2rad(60.0), "rad", 0.01, 3.15, "turning-angle limit (eq. 2)");
-  ps.add("plan.safety_distance", &q.safety_distance, 1000.0, "m", 0.0, 1e5,
-         "d_safety when the goal does not set one (eq. 4)");
-  ps.add("plan.colreg_distance", &q.colreg_distance, 3000.0, "m", 0.0, 1e6, "d_COLREG (§5), at least d_safety");
-  ps.add("plan.theta_overtaking", &q.colreg.theta_overtaking, mpgc::geo::deg2rad(22.5), "rad", 0.01, 1.5, "theta_o (eq. 16)");
-  ps.add("plan.theta_head_on", &q.colreg.theta_head_on, mpgc::geo::deg2rad(22.5), "rad", 0.01, 1.5, "theta_h (§5.5)");
-  ps.add("plan.gamma_s", &q.gamma_s, 500.0, "m/rad^2", 0.0, 1e9, "weight of the steering cost (eq. 6)");
-  ps.add("plan.gamma_f", &q.gamma_f, 1e5, "m^2", 0.0, 1e12, "weight of the fixed-obstacle margin cost (eq. 7)");
-  ps.add("plan.gamma_m", &q.gamma_m, 1e5, "m^2", 0.0, 1e12, "weight of the target margin cost (eq. 8)");
-  ps.add("plan.gamma_l", &q.gamma_l, 1.0, "-", 0.0, 1e6, "weight of the path length (eq. 9)");
-  ps.add("plan.escape_start", &q.escape_start, true,
-         "start within d_safety (target moved in): still plan; the first leg may not get closer (else INVALID_INPUT)");
-  ps.add("plan.bounds_margin", &p.bounds_margin, 3000.0, "m", 0.0, 1e6, "sampling box margin around start and goal");
-  ps.add("plan.arrival_radius", &p.arrival_radius, 100.0, "m", 0.0, 1e5, "stop planning this close to the goal");
-  ps.add("plan.default_speed", &p.default_speed, 5.0, "m/s", 0.1, 50.0, "planned speed when no other is known");
-  ps.add("plan.max_state_age", &p.max_state_age, 5.0, "s", 0.1, 600.0, "older own states are not planned from");
-  mpgc::nav::declare_params(ps, &p.jumps);
-  ps.add("plan.max_obstacle_age", &p.max_obstacle_age, 10.0, "s", 0.1, 600.0,
-         "moving obstacles older than this (obstacle_manager publishes every 0.5 s) are not extrapolated: no plan "
-         "until fresh ones come (guidance keeps the last plan, then slows to steerage speed)");
-  ps.add("plan.warm_start", &p.warm_start, true, "re-use the previous path of the same goal");
-  ps.add("plan.pin_encounters", &p.pin_encounters, true,
-         "fix each target's COLREG obligation when the risk of collision appears (encounters.hpp); false: per leg (§5)");
-  ps.add("plan.encounter_cpa", &p.encounter_cpa, 2.0, "-", 0.0, 10.0,
-         "risk of collision: CPA inside this many d_safety (about the NTNU evaluator's r_pref / r_min_cpa, 1.9)");
-  ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 0.0, "s", 0.0, 86400.0,
-         "a risk of collision within this time pins the encounter (0: the straight-line time to the goal)");
-  ps.add("memory.file", &p.memory_file, "",
-         "file that keeps the goal, plan id, warm-start path and pinned COLREG obligations across a restart "
-         "(read at start, rewritten after every plan; \"\" = start blind)");
-  ps.add("plan.latency_per_iteration", &p.latency_per_iteration, 0.0, "s", 0.0, 1.0,
-         "on simulated time, a plan takes effect iterations x this after the state it was planned from (guidance "
-         "follows the previous plan meanwhile, seed 000 §6); 25e-6 is the paper's 0.5 s for 20000 iterations; "
-         "0 = at once");
-  ps.add("plan.port_tolerance", &q.colreg.port_tolerance, mpgc::geo::deg2rad(5.0), "rad", 0.0, 1.5,
-         "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
-}
 
 msg::PlanStatus to_msg(opp::Status s) {
   switch (s) {
@@ -142,13 +66,20 @@ msg::OwnRole to_msg(mpgc::colreg::Role r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  NodeParams p;
+  opp::NodeParams p;
+  std::vector<std::unique_ptr<opp::Planner>> planners;
   mpgc::rt::ParamSet ps;
-  declare(ps, p);
-  return mpgc::rt::run_component("opp", argc, argv, ps, [&p](mpgc::rt::Component& comp) {
+  opp::declare(ps, p, planners);
+  return mpgc::rt::run_component("opp", argc, argv, ps, [&p, &planners](mpgc::rt::Component& comp) {
     mpgc::rt::Component* c = &comp;  // callbacks outlive setup: capture by pointer / shared state
-    if (p.planner.colreg_distance < p.planner.safety_distance) p.planner.colreg_distance = p.planner.safety_distance;
-    p.planner.validate();
+    if (p.constraints.colreg_distance < p.constraints.safety_distance)
+      p.constraints.colreg_distance = p.constraints.safety_distance;
+    p.constraints.validate();
+    p.objective.validate();
+    p.budget.validate();
+    opp::Planner* planner = nullptr;
+    for (auto& pl : planners)
+      if (pl->name() == p.planner) planner = pl.get();
 
     struct State {
       std::optional<msg::NavState> own;
@@ -209,7 +140,7 @@ int main(int argc, char** argv) {
           }
         });
 
-    c->every(p.check_period, [c, st, &p, path_out, enc_out, memory_out] {
+    c->every(p.check_period, [c, st, &p, planner, path_out, enc_out, memory_out] {
       if (!st->own || !st->goal) return;
       const int64_t now_ns = c->now_ns();
       const double now = static_cast<double>(now_ns) * 1e-9;
@@ -233,52 +164,27 @@ int main(int argc, char** argv) {
                       stale.empty() ? "" : "not planning: " + stale);
       }
       if (!stale.empty()) return;
-      // Targets at `now` by eq. 3.
-      std::vector<opp::Target> targets;
-      if (st->moving) {
-        const double dt = mpgc::rt::seconds_between(now_ns, st->moving->t_valid_ns);
-        for (const auto& o : st->moving->obstacles)
-          targets.push_back({o.id, {o.x + o.vx * dt, o.y + o.vy * dt}, {o.vx, o.vy}});
-      }
+      std::vector<opp::TrackReport> tracks;
+      if (st->moving)
+        for (const auto& o : st->moving->obstacles) tracks.push_back({o.id, {o.x, o.y}, {o.vx, o.vy}});
+      const std::vector<opp::Target> targets =
+          opp::targets_at(tracks, st->moving ? mpgc::rt::seconds_between(now_ns, st->moving->t_valid_ns) : 0.0);
       const std::string why = st->policy.due(now, goal.goal_id, targets);
       if (why.empty()) return;
-      // Own ship at `now` (dead-reckoned over the sample's age).
-      const double sog = std::isfinite(own.sog) ? own.sog : 0.0;
-      const double cog = std::isfinite(own.cog) ? own.cog : own.heading;
-      opp::Problem pb;
-      pb.start = {own.x + sog * std::cos(cog) * std::max(0.0, own_age), own.y + sog * std::sin(cog) * std::max(0.0, own_age)};
-      pb.heading = own.heading;
-      pb.speed = goal.cruise_speed > 0 ? goal.cruise_speed : (sog > 0.5 ? sog : p.default_speed);
-      pb.goal.p = {goal.x, goal.y};
-      pb.goal.heading = goal.heading;
-      pb.goal.heading_tolerance = std::isfinite(goal.heading) ? goal.heading_tolerance : mpgc::geo::kPi;
-      if (opp::norm(pb.goal.p - pb.start) < p.arrival_radius) {
+      opp::Setup setup = opp::build_setup(
+          p, {{own.x, own.y}, own.heading, own.sog, own.cog, own_age},
+          {{goal.x, goal.y}, goal.heading, goal.heading_tolerance, goal.cruise_speed, goal.safety_distance, goal.colreg},
+          targets, st->fixed.get(), st->plan_id);
+      const opp::Problem& pb = setup.problem;
+      if (setup.arrived) {
         c->count("skipped.arrived");
         st->policy.planned(now, goal.goal_id, targets);
         return;
       }
-      const double m = p.bounds_margin;
-      pb.bounds = {std::min(pb.start.x, pb.goal.p.x) - m, std::min(pb.start.y, pb.goal.p.y) - m,
-                   std::max(pb.start.x, pb.goal.p.x) + m, std::max(pb.start.y, pb.goal.p.y) + m};
-      pb.fixed = st->fixed.get();
-      pb.targets = targets;
-      pb.colreg = goal.colreg;
-      opp::Params prm = p.planner;
-      if (goal.safety_distance > 0) prm.safety_distance = goal.safety_distance;
-      prm.colreg_distance = std::max(prm.colreg_distance, prm.safety_distance);
-      prm.seed = static_cast<uint64_t>(p.seed) + st->plan_id;
-      const auto own_kin = mpgc::colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
       if (pb.colreg && p.pin_encounters) {
-        opp::EncounterMemoryParams ep;
-        ep.cpa_risk = p.encounter_cpa * prm.safety_distance;
-        // The plan checks COLREG along the whole path: a risk anywhere within its horizon matters.
-        ep.tcpa_max = p.encounter_tcpa > 0 ? p.encounter_tcpa : opp::norm(pb.goal.p - pb.start) / pb.speed;
-        ep.release_range = prm.colreg_distance;
-        ep.theta_o = prm.colreg.theta_overtaking;
-        ep.theta_h = prm.colreg.theta_head_on;
         try {
           const std::size_t before = st->encounters.size();
-          st->encounters.update(ep, own_kin, pb.targets);
+          st->encounters.update(opp::encounter_params(p, setup), setup.own, setup.problem.targets);
           if (st->encounters.size() != before)
             for (const auto& t : pb.targets)
               if (t.pinned.obligation != opp::Obligation::kNone)
@@ -292,7 +198,7 @@ int main(int argc, char** argv) {
       auto wall = &st->wall;
       hooks.elapsed = [wall] { return wall->now_s(); };
       const bool warm = p.warm_start && st->warm_goal == goal.goal_id && !st->last_path.empty();
-      const opp::Result r = opp::plan(pb, prm, hooks, warm ? st->last_path : std::vector<opp::Vec2>{});
+      const opp::Result r = planner->solve(setup.request(p.objective, warm ? st->last_path : std::vector<opp::Vec2>{}), hooks);
       st->policy.planned(now, goal.goal_id, targets, !r.path.empty());
 
       msg::Path out;
@@ -312,7 +218,7 @@ int main(int argc, char** argv) {
       out.cost_smooth = r.cost.smooth;
       out.iterations = static_cast<uint32_t>(r.stats.iterations);
       out.planning_time = r.stats.planning_time;
-      out.planner = "rrtstar-colreg";
+      out.planner = planner->name();
       // A plan computed on simulated time takes as long as its iterations would (deterministic);
       // on the wall clock its lateness is real and it applies on arrival.
       if (c->clock().simulated() && p.latency_per_iteration > 0)
@@ -332,25 +238,15 @@ int main(int argc, char** argv) {
       // Encounters from the planner's point of view (shared rule 13-15 geometry).
       msg::EncounterList enc;
       enc.header = out.header;
-      mpgc::colreg::ColregParams cp;
-      cp.theta_o = prm.colreg.theta_overtaking;
-      cp.theta_h = prm.colreg.theta_head_on;
-      cp.d_colreg = prm.colreg_distance;
-      const auto& ok = own_kin;
-      for (const auto& o : st->moving ? st->moving->obstacles : std::vector<msg::MovingObstacle>{}) {
-        const opp::Target* t = nullptr;
-        for (const auto& x : targets)
-          if (x.id == o.id) t = &x;
-        if (!t) continue;
-        const mpgc::colreg::ShipKinematics tk{t->p.x, t->p.y, t->v.x, t->v.y};
-        try {
-          const auto a = mpgc::colreg::assess(ok, tk, cp);
-          enc.encounters.push_back(
-              {o.id, o.mmsi, to_msg(a.type), to_msg(a.role), a.cpa.dcpa, a.cpa.tcpa, a.cpa.range, mpgc::colreg::bearing(ok, tk)});
-        } catch (const std::exception& e) {
-          c->reject("plan/encounters", e.what());
-        }
+      std::vector<std::string> rejected;
+      for (const auto& e : opp::report_encounters(p, setup, &rejected)) {
+        uint32_t mmsi = 0;
+        for (const auto& o : st->moving->obstacles)
+          if (o.id == e.id) mmsi = o.mmsi;
+        const auto& a = e.assessment;
+        enc.encounters.push_back({e.id, mmsi, to_msg(a.type), to_msg(a.role), a.cpa.dcpa, a.cpa.tcpa, a.cpa.range, e.bearing});
       }
+      for (const auto& why_not : rejected) c->reject("plan/encounters", why_not);
       enc_out->write(enc);
 
       // What a restart must know (memory.hpp), on the bus for observers and in the memory file.

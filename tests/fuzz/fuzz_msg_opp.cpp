@@ -13,7 +13,7 @@
 #include "mpgc/obstacle_manager/msg_convert.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/encounters.hpp"
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/validate.hpp"
 
 namespace opp = mpgc::opp;

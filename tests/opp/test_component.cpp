@@ -103,7 +103,7 @@ TEST(OppProcess, PlansScenario1AndReplansOnNewGoal) {
   EXPECT_GT(p.iterations, 0u);
   EXPECT_GT(p.planning_time, 0.0);
   EXPECT_GE(p.cost_length, std::sqrt(2.0) * 10000.0 - 1.0);
-  EXPECT_EQ(p.planner, "rrtstar-colreg");
+  EXPECT_EQ(p.planner, "rrtstar");  // plan.planner, the registry name
   msg::EncounterList e;
   ASSERT_TRUE(wait_for(enc_r, e, [](const msg::EncounterList& x) { return !x.encounters.empty(); }, 10.0));
   EXPECT_EQ(e.encounters.size(), 2u);

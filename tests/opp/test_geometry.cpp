@@ -98,9 +98,9 @@ TEST(Obstacles, RejectNonFiniteInput) {
 
 TEST(Geometry, MinDistanceOfLinearMotion) {
   // Relative start (10, 0), closing at 1 m/s along x: closest 0 at tau = 10, but clipped at T.
-  EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {-1, 0}, 20), 9.0);
-  EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {-1, 0}, 4), 36.0 + 9.0);
-  EXPECT_DOUBLE_EQ(opp::min_dist2_linear({10, 3}, {1, 0}, 4), 109.0);
+  EXPECT_DOUBLE_EQ(mpgc::geom::closest_approach({10, 3}, {-1, 0}, 20).dist2, 9.0);
+  EXPECT_DOUBLE_EQ(mpgc::geom::closest_approach({10, 3}, {-1, 0}, 4).dist2, 36.0 + 9.0);
+  EXPECT_DOUBLE_EQ(mpgc::geom::closest_approach({10, 3}, {1, 0}, 4).dist2, 109.0);
 }
 
 #include "mpgc/opp/chart_obstacles.hpp"

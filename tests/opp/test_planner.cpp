@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 
 namespace opp = mpgc::opp;

@@ -14,7 +14,7 @@
 
 #include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 
 namespace opp = mpgc::opp;

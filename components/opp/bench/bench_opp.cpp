@@ -21,7 +21,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 
 namespace opp = mpgc::opp;

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "mpgc/colreg/colreg.hpp"
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/problem.hpp"
 
 namespace mpgc::opp {
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "mpgc/opp/encounters.hpp"
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/problem.hpp"
 
 namespace mpgc::opp {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/problem.hpp"
 
 namespace mpgc::opp {
 

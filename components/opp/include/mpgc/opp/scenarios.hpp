@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "mpgc/opp/obstacles.hpp"
-#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/rrtstar.hpp"
 
 namespace mpgc::opp {
 

@@ -1,0 +1,112 @@
+// The planning component's logic without DDS or a clock (mpgc_opp's main.cpp is wiring around
+// it): its named parameters, the problem it builds from what it last heard (dead reckoning of the
+// own ship over the report's age, targets extrapolated by eq. 3, the goal's speed and d_safety,
+// the sampling box), the encounter memory's parameters, and the encounters it reports.
+//
+//   opp::NodeParams p;  opp::declare(ps, p);  ps.validate_and_apply();
+//   std::vector<opp::Target> tg = opp::targets_at(tracks, age);
+//   opp::Setup s = opp::build_setup(p, own, goal, tg, plan_index);
+//   if (!s.arrived) r = planner.solve(s.request(warm), hooks);
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mpgc/colreg/colreg.hpp"
+#include "mpgc/nav/jump_gate.hpp"
+#include "mpgc/opp/encounters.hpp"
+#include "mpgc/opp/planner.hpp"
+#include "mpgc/opp/replan.hpp"
+
+namespace mpgc::rt {
+class ParamSet;
+}
+
+namespace mpgc::opp {
+
+struct NodeParams {
+  std::string planner = "rrtstar";  // plan.planner: which planner of the registry plans
+  ConstraintParams constraints;     // plan.safety_distance (unless the goal sets it), max_turn, ...
+  ObjectiveParams objective;        // plan.gamma_*
+  Budget budget;                    // plan.max_iterations, plan.time_budget (seed: plan.seed + k)
+  ReplanParams replan;
+  int seed = 1;                  // [-] base seed; plan k uses seed + k
+  double check_period = 0.5;     // [s] how often the re-planning conditions are checked
+  double bounds_margin = 3000;   // [m] sampling box around start and goal
+  double arrival_radius = 100;   // [m] no more plans once the own ship is this close to the goal
+  double default_speed = 5;      // [m/s] when neither the goal nor the own state gives a speed
+  double max_state_age = 5;      // [s] own state older than this is not planned from
+  nav::JumpGateParams jumps;     // own position jumps are not planned from (timeout: max_state_age)
+  double max_obstacle_age = 10;  // [s] moving obstacles older than this are not planned with
+  bool warm_start = true;        // seed the search with the previous path of the same goal
+  bool pin_encounters = true;    // hold each leg to the obligation fixed at the encounter's start
+  double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
+  double encounter_tcpa = 0;     // [s] risk of collision within this TCPA pins an encounter (0: the
+                                 //     plan's horizon, the straight-line time to the goal)
+  // Rule 13-15 sectors of the pinned and reported encounters (common colreg, not the planner's eq. 16 angle).
+  double sector_abaft_beam = 0.39269908169872414;  // [rad] overtaking: more than this abaft the beam
+  double sector_head_on = 0.39269908169872414;     // [rad] head-on: within this of each bow
+  std::string memory_file;       // what a restart must remember (memory.hpp); "" = nothing kept
+  double latency_per_iteration = 0;  // [s] simulated time one iteration takes (late plans); 0 = at once
+};
+
+// Declares every parameter of the component, the planners' own included (each planner of the
+// registry declares its parameters into `ps`; `planners` receives them, by name).
+void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planner>>& planners);
+
+// The own ship as last reported, in the local frame.
+struct OwnReport {
+  Vec2 p;                  // [m]
+  double heading = 0;      // [rad]
+  double sog = 0;          // [m/s] NaN: unknown (taken as 0)
+  double cog = 0;          // [rad] NaN: unknown (the heading)
+  double age = 0;          // [s] at the planning time
+};
+struct GoalSpec {
+  Vec2 p;                    // [m]
+  double heading = 0;        // [rad] NaN: any
+  double heading_tolerance = 0;  // [rad]
+  double cruise_speed = 0;   // [m/s] 0: the own speed (or default_speed)
+  double safety_distance = 0;  // [m] 0: plan.safety_distance
+  bool colreg = true;
+};
+struct TrackReport {
+  uint32_t id = 0;
+  Vec2 p, v;  // [m], [m/s] at the report's time
+};
+
+// Targets at the planning time: each report extrapolated over its age `dt` [s] (eq. 3).
+std::vector<Target> targets_at(const std::vector<TrackReport>& tracks, double dt);
+
+struct Setup {
+  Problem problem;
+  ConstraintParams constraints;      // with the goal's d_safety
+  Budget budget;                     // seed of this plan
+  colreg::ShipKinematics own;        // the own ship at the planning time (course and speed over ground)
+  bool arrived = false;              // within arrival_radius of the goal: no plan
+  // Keeps a reference to `problem`: the Setup must outlive the request.
+  Request request(const ObjectiveParams& objective, std::vector<Vec2> warm) const {
+    return Request{problem, constraints, objective, budget, std::move(warm)};
+  }
+};
+
+// The problem of plan number `plan_index` (its seed is seed + plan_index) from the own ship, the
+// goal and the targets at the planning time. `fixed` (may be null) is the chart.
+Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goal, std::vector<Target> targets,
+                  const FixedObstacles* fixed, uint32_t plan_index);
+
+// When a risk of collision pins an encounter, for this setup (encounter_cpa x d_safety; TCPA
+// within the plan's horizon; released beyond d_COLREG).
+EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s);
+
+// One target as the planner reports it (plan/encounters): rule 13-15 assessment and bearing.
+struct EncounterReport {
+  uint32_t id = 0;
+  colreg::Assessment assessment;
+  double bearing = 0;  // [rad] true bearing from the own ship
+};
+// Every target that can be assessed; `rejected` receives why one could not (non-finite input).
+std::vector<EncounterReport> report_encounters(const NodeParams& p, const Setup& s, std::vector<std::string>* rejected);
+
+}  // namespace mpgc::opp

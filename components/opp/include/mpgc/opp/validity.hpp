@@ -1,0 +1,64 @@
+// The validity checker of the planning interface (OMPL's StateValidityChecker and MotionValidator
+// in one): whether a leg of the own ship may be sailed. Turn limit (eq. 2), clearance from fixed
+// obstacles (eq. 4 along the whole leg), time-dependent clearance from every target at its eq. 3
+// position (eq. 3-4), and COLREG at a level: §5 per leg and the pinned obligations of the
+// encounter memory. Every planner checks its motions here, so all of them answer to the same rules.
+//
+//   opp::ValidityChecker v(problem, constraints);
+//   if (v.turn_ok(dir, b - a, len, at_root) && v.fixed_clear(a, b) &&
+//       v.moving(a, t_a, b, len, opp::ColregLevel::kFull) == opp::ValidityChecker::kValid) ...
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mpgc/opp/problem.hpp"
+
+namespace mpgc::opp {
+
+class ValidityChecker {
+ public:
+  // Keeps references: `pb` and `c` must outlive the checker.
+  ValidityChecker(const Problem& pb, const ConstraintParams& c);
+
+  // What makes a leg invalid (the counters of a no-path reason).
+  enum Reject { kValid = 0, kTurn, kTarget, kColreg, kFixed, kGoalHeading, kRejectCount };
+
+  const Problem& problem() const { return pb_; }
+  const ConstraintParams& constraints() const { return c_; }
+  const FixedObstacles& fixed() const { return *fixed_; }
+  bool has_targets() const { return !pb_.targets.empty(); }
+  bool turn_limited() const { return cos_turn_ > -1.5; }
+
+  // eq. 2: |theta| <= max_turn, as cos(theta) >= cos(max_turn). `dir` is the unit incoming
+  // direction, `seg` the leg (length `len`); the first leg is exempt unless turn_limit_at_start.
+  bool turn_ok(Vec2 dir, Vec2 seg, double len, bool at_root) const {
+    if (!turn_limited() || (at_root && !c_.turn_limit_at_start)) return true;
+    return dot(dir, seg) >= (cos_turn_ - 1e-12) * len;
+  }
+  // The last leg's course within the goal's heading tolerance (§6).
+  bool goal_heading_ok(Vec2 seg) const;
+  // Fixed clearance distance of a leg: d_safety, or from the start with escape_start, what the
+  // start already keeps (a leg may not get closer than it starts).
+  double fixed_distance(bool from_start) const { return from_start ? start_fixed_d_ : c_.safety_distance; }
+  // eq. 4 along the whole leg a -> b at distance d.
+  bool fixed_clear(Vec2 a, Vec2 b, double d) const { return fixed_->segment_clear(a, b, d); }
+  // eq. 3-4 along the leg a -> b (length len) started at time ta, against every target, plus
+  // COLREG at `level`. `escape`: a leg from a start already inside d_safety of a target may not
+  // get closer to it than it starts (escape_start).
+  Reject moving(Vec2 a, double ta, Vec2 b, double len, ColregLevel level, bool escape = false) const;
+
+  // Exact validity of a whole path at constant speed: every check above on every leg and the
+  // arrival heading. Returns "" or the first violation.
+  std::string check_path(const std::vector<Vec2>& path, bool colreg) const;
+
+ private:
+  const Problem& pb_;
+  const ConstraintParams& c_;
+  NoFixedObstacles none_;
+  const FixedObstacles* fixed_;
+  double cos_turn_, ds2_, dc2_, inv_u_, start_fixed_d_;
+  bool goal_any_heading_;
+};
+
+}  // namespace mpgc::opp

@@ -1,0 +1,139 @@
+#include "mpgc/opp/node.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+#include "mpgc/geo/angles.hpp"
+#include "mpgc/opp/registry.hpp"
+#include "mpgc/runtime/params.hpp"
+
+namespace mpgc::opp {
+
+void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planner>>& planners) {
+  ConstraintParams& c = p.constraints;
+  ObjectiveParams& o = p.objective;
+  ps.add("plan.planner", &p.planner, "rrtstar", "the planner (registry.hpp)", planner_names());
+  ps.add("replan.period", &p.replan.period, 15.0, "s", 0.1, 3600.0, "fixed re-planning period (seed 000: 15 s)");
+  ps.add("replan.track_threshold", &p.replan.track_threshold, 300.0, "m", 1.0, 1e5,
+         "re-plan at once when a target's predicted position moved this far from the last plan's prediction");
+  ps.add("replan.track_horizon", &p.replan.track_horizon, 300.0, "s", 0.0, 3600.0, "prediction horizon of that comparison");
+  ps.add("replan.min_interval", &p.replan.min_interval, 2.0, "s", 0.0, 600.0, "event-triggered plans no closer than this");
+  ps.add("replan.check_period", &p.check_period, 0.5, "s", 0.01, 60.0, "how often the conditions are checked");
+  ps.add("plan.time_budget", &p.budget.time_budget, 0.5, "s", 0.001, 60.0, "wall-time budget of one plan");
+  ps.add("plan.max_iterations", &p.budget.max_iterations, 20000, "-", 1, 2000000, "iterations per plan");
+  ps.add("plan.seed", &p.seed, 1, "-", 0, 2147483647, "base seed (plan k uses seed + k)");
+  ps.add("plan.max_turn", &c.max_turn, geo::deg2rad(60.0), "rad", 0.01, 3.15, "turning-angle limit (eq. 2)");
+  ps.add("plan.safety_distance", &c.safety_distance, 1000.0, "m", 0.0, 1e5, "d_safety when the goal does not set one (eq. 4)");
+  ps.add("plan.colreg_distance", &c.colreg_distance, 3000.0, "m", 0.0, 1e6, "d_COLREG (§5), at least d_safety");
+  ps.add("plan.theta_overtaking", &c.colreg.theta_overtaking, geo::deg2rad(22.5), "rad", 0.01, 1.5,
+         "theta_o of eq. 16: overtaking when the two velocities are within it of each other");
+  ps.add("plan.theta_head_on", &c.colreg.theta_head_on, geo::deg2rad(22.5), "rad", 0.01, 1.5,
+         "theta_h of §5.5: head-on when one velocity is within it of the other's reciprocal");
+  ps.add("plan.port_tolerance", &c.colreg.port_tolerance, geo::deg2rad(5.0), "rad", 0.0, 1.5,
+         "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
+  ps.add("plan.escape_start", &c.escape_start, true,
+         "start within d_safety (target moved in): still plan; the first leg may not get closer (else INVALID_INPUT)");
+  ps.add("plan.gamma_s", &o.gamma_s, 500.0, "m/rad^2", 0.0, 1e9, "weight of the steering cost (eq. 6)");
+  ps.add("plan.gamma_f", &o.gamma_f, 1e5, "m^2", 0.0, 1e12, "weight of the fixed-obstacle margin cost (eq. 7)");
+  ps.add("plan.gamma_m", &o.gamma_m, 1e5, "m^2", 0.0, 1e12, "weight of the target margin cost (eq. 8)");
+  ps.add("plan.gamma_l", &o.gamma_l, 1.0, "-", 0.0, 1e6, "weight of the path length (eq. 9)");
+  ps.add("plan.bounds_margin", &p.bounds_margin, 3000.0, "m", 0.0, 1e6, "sampling box margin around start and goal");
+  ps.add("plan.arrival_radius", &p.arrival_radius, 100.0, "m", 0.0, 1e5, "stop planning this close to the goal");
+  ps.add("plan.default_speed", &p.default_speed, 5.0, "m/s", 0.1, 50.0, "planned speed when no other is known");
+  ps.add("plan.max_state_age", &p.max_state_age, 5.0, "s", 0.1, 600.0, "older own states are not planned from");
+  nav::declare_params(ps, &p.jumps);
+  ps.add("plan.max_obstacle_age", &p.max_obstacle_age, 10.0, "s", 0.1, 600.0,
+         "moving obstacles older than this (obstacle_manager publishes every 0.5 s) are not extrapolated: no plan "
+         "until fresh ones come (guidance keeps the last plan, then slows to steerage speed)");
+  ps.add("plan.warm_start", &p.warm_start, true, "re-use the previous path of the same goal");
+  ps.add("plan.pin_encounters", &p.pin_encounters, true,
+         "fix each target's COLREG obligation when the risk of collision appears (encounters.hpp); false: per leg (§5)");
+  ps.add("plan.encounter_cpa", &p.encounter_cpa, 2.0, "-", 0.0, 10.0,
+         "risk of collision: CPA inside this many d_safety (about the NTNU evaluator's r_pref / r_min_cpa, 1.9)");
+  ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 0.0, "s", 0.0, 86400.0,
+         "a risk of collision within this time pins the encounter (0: the straight-line time to the goal)");
+  ps.add("encounter.abaft_beam", &p.sector_abaft_beam, geo::deg2rad(22.5), "rad", 0.01, 1.5,
+         "rule 13 sector of pinned and reported encounters: overtaking from more than this abaft the beam");
+  ps.add("encounter.head_on", &p.sector_head_on, geo::deg2rad(22.5), "rad", 0.01, 1.5,
+         "rule 14 sector of pinned and reported encounters: each ship within this of the other's bow");
+  ps.add("memory.file", &p.memory_file, "",
+         "file that keeps the goal, plan id, warm-start path and pinned COLREG obligations across a restart "
+         "(read at start, rewritten after every plan; \"\" = start blind)");
+  ps.add("plan.latency_per_iteration", &p.latency_per_iteration, 0.0, "s", 0.0, 1.0,
+         "on simulated time, a plan takes effect iterations x this after the state it was planned from (guidance "
+         "follows the previous plan meanwhile, seed 000 §6); 25e-6 is the paper's 0.5 s for 20000 iterations; "
+         "0 = at once");
+  planners.clear();
+  for (const std::string& name : planner_names()) {
+    planners.push_back(make_planner(name));
+    planners.back()->declare(ps);
+  }
+}
+
+std::vector<Target> targets_at(const std::vector<TrackReport>& tracks, double dt) {
+  std::vector<Target> out;
+  out.reserve(tracks.size());
+  for (const TrackReport& t : tracks) out.push_back({t.id, {t.p.x + t.v.x * dt, t.p.y + t.v.y * dt}, t.v});
+  return out;
+}
+
+Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goal, std::vector<Target> targets,
+                  const FixedObstacles* fixed, uint32_t plan_index) {
+  Setup s;
+  Problem& pb = s.problem;
+  // The own ship at the planning time, dead-reckoned over the report's age.
+  const double sog = std::isfinite(own.sog) ? own.sog : 0.0;
+  const double cog = std::isfinite(own.cog) ? own.cog : own.heading;
+  const double age = std::max(0.0, own.age);
+  pb.start = {own.p.x + sog * std::cos(cog) * age, own.p.y + sog * std::sin(cog) * age};
+  pb.heading = own.heading;
+  pb.speed = goal.cruise_speed > 0 ? goal.cruise_speed : (sog > 0.5 ? sog : p.default_speed);
+  pb.goal.p = goal.p;
+  pb.goal.heading = goal.heading;
+  pb.goal.heading_tolerance = std::isfinite(goal.heading) ? goal.heading_tolerance : geo::kPi;
+  s.arrived = norm(pb.goal.p - pb.start) < p.arrival_radius;
+  const double m = p.bounds_margin;
+  pb.bounds = {std::min(pb.start.x, pb.goal.p.x) - m, std::min(pb.start.y, pb.goal.p.y) - m,
+               std::max(pb.start.x, pb.goal.p.x) + m, std::max(pb.start.y, pb.goal.p.y) + m};
+  pb.fixed = fixed;
+  pb.targets = std::move(targets);
+  pb.colreg = goal.colreg;
+  s.constraints = p.constraints;
+  if (goal.safety_distance > 0) s.constraints.safety_distance = goal.safety_distance;
+  s.constraints.colreg_distance = std::max(s.constraints.colreg_distance, s.constraints.safety_distance);
+  s.budget = p.budget;
+  s.budget.seed = static_cast<uint64_t>(p.seed) + plan_index;
+  s.own = colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
+  return s;
+}
+
+EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
+  EncounterMemoryParams ep;
+  ep.cpa_risk = p.encounter_cpa * s.constraints.safety_distance;
+  // The plan checks COLREG along the whole path: a risk anywhere within its horizon matters.
+  ep.tcpa_max = p.encounter_tcpa > 0 ? p.encounter_tcpa : norm(s.problem.goal.p - s.problem.start) / s.problem.speed;
+  ep.release_range = s.constraints.colreg_distance;
+  ep.theta_o = p.sector_abaft_beam;
+  ep.theta_h = p.sector_head_on;
+  return ep;
+}
+
+std::vector<EncounterReport> report_encounters(const NodeParams& p, const Setup& s, std::vector<std::string>* rejected) {
+  colreg::ColregParams cp;
+  cp.theta_o = p.sector_abaft_beam;
+  cp.theta_h = p.sector_head_on;
+  cp.d_colreg = s.constraints.colreg_distance;
+  std::vector<EncounterReport> out;
+  for (const Target& t : s.problem.targets) {
+    const colreg::ShipKinematics tk{t.p.x, t.p.y, t.v.x, t.v.y};
+    try {
+      out.push_back({t.id, colreg::assess(s.own, tk, cp), colreg::bearing(s.own, tk)});
+    } catch (const std::exception& e) {
+      if (rejected) rejected->push_back(e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace mpgc::opp

@@ -1,0 +1,87 @@
+#include "mpgc/opp/problem.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace mpgc::opp {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+bool fin(double v) { return std::isfinite(v); }
+void require(bool ok, const char* field, const std::string& why) {
+  if (!ok) throw std::invalid_argument(std::string("opp::Params.") + field + " " + why);
+}
+}  // namespace
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+void ConstraintParams::validate() const {
+  require(fin(safety_distance) && safety_distance >= 0, "safety_distance", "must be finite and >= 0");
+  require(fin(colreg_distance) && colreg_distance >= safety_distance, "colreg_distance",
+          "must be finite and >= safety_distance");
+  require(fin(max_turn) && max_turn > 0, "max_turn", "must be finite and > 0");
+  require(fin(colreg.theta_overtaking) && colreg.theta_overtaking > 0 && colreg.theta_overtaking < kPi / 2,
+          "colreg.theta_overtaking", "must be in (0, pi/2)");
+  require(fin(colreg.theta_head_on) && colreg.theta_head_on > 0 && colreg.theta_head_on < kPi / 2,
+          "colreg.theta_head_on", "must be in (0, pi/2)");
+  require(fin(colreg.epsilon) && colreg.epsilon > 0 && colreg.epsilon < 1, "colreg.epsilon", "must be in (0, 1)");
+  require(fin(colreg.min_speed) && colreg.min_speed >= 0, "colreg.min_speed", "must be finite and >= 0");
+  require(fin(colreg.port_tolerance) && colreg.port_tolerance >= 0 && colreg.port_tolerance < kPi, "colreg.port_tolerance",
+          "must be in [0, pi)");
+  require(fin(colreg_spacing) && colreg_spacing > 0, "colreg_spacing", "must be finite and > 0");
+}
+
+void ObjectiveParams::validate() const {
+  require(fin(gamma_s) && gamma_s >= 0, "gamma_s", "must be finite and >= 0");
+  require(fin(gamma_f) && gamma_f >= 0, "gamma_f", "must be finite and >= 0");
+  require(fin(gamma_m) && gamma_m >= 0, "gamma_m", "must be finite and >= 0");
+  require(fin(gamma_l) && gamma_l >= 0, "gamma_l", "must be finite and >= 0");
+  require(gamma_s + gamma_f + gamma_m + gamma_l > 0, "gamma_l", "all cost weights are zero");
+  require(fin(min_margin) && min_margin > 0, "min_margin", "must be finite and > 0");
+}
+
+std::string check_problem(const Problem& pb, const ConstraintParams& c) {
+  if (!finite(pb.start)) return "start position is not finite";
+  if (!std::isfinite(pb.heading)) return "own heading is not finite";
+  if (!std::isfinite(pb.speed) || pb.speed <= 0.0) return "own speed must be finite and > 0 (got " + fmt(pb.speed) + ")";
+  if (!finite(pb.goal.p)) return "goal position is not finite";
+  if (std::isinf(pb.goal.heading)) return "goal heading is infinite (NaN means any heading)";
+  if (!std::isnan(pb.goal.heading) && !(pb.goal.heading_tolerance >= 0.0))
+    return "goal heading tolerance must be >= 0 (got " + fmt(pb.goal.heading_tolerance) + ")";
+  const Bounds& b = pb.bounds;
+  if (!std::isfinite(b.min_x) || !std::isfinite(b.min_y) || !std::isfinite(b.max_x) || !std::isfinite(b.max_y) ||
+      !(b.max_x > b.min_x) || !(b.max_y > b.min_y))
+    return "sampling bounds are empty or not finite";
+  if (!b.contains(pb.start)) return "start lies outside the sampling bounds";
+  if (!b.contains(pb.goal.p)) return "goal lies outside the sampling bounds";
+  if (pb.targets.size() > 10000) return "too many targets (" + std::to_string(pb.targets.size()) + " > 10000)";
+  for (size_t i = 0; i < pb.targets.size(); ++i) {
+    const Target& t = pb.targets[i];
+    if (!finite(t.p) || !finite(t.v))
+      return "target " + std::to_string(i) + " (id " + std::to_string(t.id) + ") has a non-finite position or velocity";
+  }
+  if (pb.fixed) {
+    const double ds = pb.fixed->nearest(pb.start);
+    if (ds <= 0.0 || (ds < c.safety_distance && !c.escape_start))
+      return "start is within the safety distance of a fixed obstacle (" + fmt(ds) + " m < " + fmt(c.safety_distance) + " m)";
+    const double dg = pb.fixed->nearest(pb.goal.p);
+    if (dg < c.safety_distance || dg <= 0.0)
+      return "goal is inside or within the safety distance of a fixed obstacle (" + fmt(dg) + " m < " +
+             fmt(c.safety_distance) + " m)";
+  }
+  for (size_t i = 0; i < pb.targets.size() && !c.escape_start; ++i) {
+    const double d = norm(pb.targets[i].p - pb.start);
+    if (d < c.safety_distance)
+      return "start is within the safety distance of target " + std::to_string(i) + " (id " +
+             std::to_string(pb.targets[i].id) + "): " + fmt(d) + " m < " + fmt(c.safety_distance) + " m";
+  }
+  return "";
+}
+
+}  // namespace mpgc::opp

@@ -1,0 +1,138 @@
+// The planning component's logic without DDS (node.hpp) and the planning interface (registry,
+// Planner::solve): what main.cpp used to do inline, tested here directly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mpgc/opp/node.hpp"
+#include "mpgc/opp/registry.hpp"
+#include "mpgc/opp/rrtstar.hpp"
+#include "mpgc/opp/scenarios.hpp"
+#include "mpgc/runtime/params.hpp"
+
+namespace opp = mpgc::opp;
+
+namespace {
+
+opp::NodeParams declared(std::vector<std::string> overrides = {}) {
+  opp::NodeParams p;
+  std::vector<std::unique_ptr<opp::Planner>> planners;
+  mpgc::rt::ParamSet ps;
+  opp::declare(ps, p, planners);
+  for (const auto& o : overrides) ps.set_override(o);
+  ps.validate_and_apply();
+  return p;
+}
+
+TEST(OppNode, TargetsAreExtrapolatedOverTheirAge) {
+  const auto t = opp::targets_at({{7, {100, 200}, {2, -1}}, {9, {0, 0}, {0, 0}}}, 10.0);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].id, 7u);
+  EXPECT_DOUBLE_EQ(t[0].p.x, 120);
+  EXPECT_DOUBLE_EQ(t[0].p.y, 190);
+  EXPECT_DOUBLE_EQ(t[0].v.x, 2);
+  EXPECT_EQ(t[0].pinned.obligation, opp::Obligation::kNone);
+}
+
+TEST(OppNode, SetupDeadReckonsTheOwnShipAndTakesTheGoalsSpeedAndSafetyDistance) {
+  opp::NodeParams p = declared();
+  const opp::OwnReport own{{1000, 2000}, 0.1, 4.0, 0.0, 5.0};  // 4 m/s due north, 5 s old
+  opp::GoalSpec goal{{9000, 2000}, std::nan(""), 0.3, 6.0, 1500.0, true};
+  const opp::Setup s = opp::build_setup(p, own, goal, {}, nullptr, 3);
+  EXPECT_DOUBLE_EQ(s.problem.start.x, 1020);
+  EXPECT_DOUBLE_EQ(s.problem.start.y, 2000);
+  EXPECT_DOUBLE_EQ(s.problem.heading, 0.1);
+  EXPECT_DOUBLE_EQ(s.problem.speed, 6.0);                        // the goal's cruise speed
+  EXPECT_DOUBLE_EQ(s.problem.goal.heading_tolerance, M_PI);      // any arrival heading
+  EXPECT_DOUBLE_EQ(s.constraints.safety_distance, 1500);        // the goal's d_safety
+  EXPECT_DOUBLE_EQ(s.constraints.colreg_distance, 3000);
+  EXPECT_EQ(s.budget.seed, 1u + 3u);                             // plan.seed + plan index
+  EXPECT_DOUBLE_EQ(s.problem.bounds.min_x, 1020 - 3000);
+  EXPECT_DOUBLE_EQ(s.problem.bounds.max_x, 9000 + 3000);
+  EXPECT_FALSE(s.arrived);
+  EXPECT_DOUBLE_EQ(s.own.vx, 4.0);
+  EXPECT_TRUE(opp::check_problem(s.problem, s.constraints).empty());
+
+  goal.cruise_speed = 0;
+  goal.safety_distance = 5000;  // beyond d_COLREG: d_COLREG follows it
+  EXPECT_DOUBLE_EQ(opp::build_setup(p, own, goal, {}, nullptr, 0).problem.speed, 4.0);  // own speed
+  EXPECT_DOUBLE_EQ(opp::build_setup(p, own, goal, {}, nullptr, 0).constraints.colreg_distance, 5000);
+  const opp::OwnReport stopped{{1000, 2000}, 0.1, std::nan(""), std::nan(""), 5.0};
+  const opp::Setup s2 = opp::build_setup(p, stopped, goal, {}, nullptr, 0);
+  EXPECT_DOUBLE_EQ(s2.problem.start.x, 1000);             // unknown speed: no dead reckoning
+  EXPECT_DOUBLE_EQ(s2.problem.speed, p.default_speed);
+  goal.p = {1050, 2000};
+  EXPECT_TRUE(opp::build_setup(p, own, goal, {}, nullptr, 0).arrived);
+}
+
+TEST(OppNode, EncounterParamsAndReportsUseTheRuleSectors) {
+  opp::NodeParams p = declared({"plan.encounter_cpa=1.5"});
+  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
+  // A target dead ahead on the reciprocal course: head-on; and one with a NaN velocity.
+  std::vector<opp::Target> tg = {{4, {2500, 10}, {-5, 0}, {}}, {5, {3000, 3000}, {std::nan(""), 0}, {}}};
+  const opp::Setup s = opp::build_setup(p, own, {{20000, 0}, std::nan(""), 0, 5, 0, true}, tg, nullptr, 0);
+  const opp::EncounterMemoryParams ep = opp::encounter_params(p, s);
+  EXPECT_DOUBLE_EQ(ep.cpa_risk, 1500);
+  EXPECT_DOUBLE_EQ(ep.tcpa_max, 20000.0 / 5.0);  // the straight-line time to the goal
+  EXPECT_DOUBLE_EQ(ep.theta_o, p.sector_abaft_beam);
+  std::vector<std::string> rejected;
+  const auto rep = opp::report_encounters(p, s, &rejected);
+  ASSERT_EQ(rep.size(), 1u);
+  EXPECT_EQ(rep[0].id, 4u);
+  EXPECT_EQ(rep[0].assessment.type, mpgc::colreg::EncounterType::kHeadOn);
+  EXPECT_NEAR(rep[0].assessment.cpa.tcpa, 250, 1);
+  ASSERT_EQ(rejected.size(), 1u);
+}
+
+TEST(OppNode, ThePlannerIsChosenByNameAndAnUnknownOneIsRefused) {
+  EXPECT_EQ(opp::planner_names().front(), "rrtstar");
+  EXPECT_EQ(opp::make_planner("rrtstar")->name(), "rrtstar");
+  try {
+    opp::make_planner("astar");
+    FAIL() << "unknown planner accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("known: rrtstar"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(declared({"plan.planner=astar"}), mpgc::rt::ParamError);
+  EXPECT_THROW(declared({"plan.step=0"}), mpgc::rt::ParamError);  // the planner's own range
+  EXPECT_EQ(declared({"plan.planner=rrtstar"}).planner, "rrtstar");
+}
+
+// The interface adds nothing to the RRT*: solve() through it is plan() bit for bit.
+TEST(OppNode, SolveThroughTheInterfaceIsThePlanBitForBit) {
+  opp::Scenario sc = opp::paper_scenario(1);
+  sc.params.max_iterations = 1500;
+  sc.params.seed = 11;
+  const opp::Result direct = opp::plan(sc.problem, sc.params);
+  opp::RrtStar rrt;
+  rrt.params() = sc.params;  // its RrtStarParams part
+  const opp::Result via = rrt.solve({sc.problem, sc.params, sc.params, sc.params, {}});
+  ASSERT_EQ(direct.path.size(), via.path.size());
+  for (size_t i = 0; i < via.path.size(); ++i) {
+    EXPECT_EQ(direct.path[i].p.x, via.path[i].p.x);
+    EXPECT_EQ(direct.path[i].p.y, via.path[i].p.y);
+  }
+  EXPECT_EQ(direct.cost.total, via.cost.total);
+  EXPECT_EQ(direct.stats.edge_checks, via.stats.edge_checks);
+  // Bad input comes back as a status, not an exception.
+  opp::Problem bad = sc.problem;
+  bad.speed = std::nan("");
+  const opp::Result r = rrt.solve({bad, sc.params, sc.params, sc.params, {}});
+  EXPECT_EQ(r.status, opp::Status::kInvalidInput);
+  EXPECT_NE(r.reason.find("speed"), std::string::npos);
+}
+
+// connect_goal = false: goal edges only from goal samples (as OMPL's RRTstar); still solves, with
+// its first solution found later (a node near the goal waits for a goal sample).
+TEST(OppNode, ConnectGoalOffConnectsOnlyFromGoalSamples) {
+  opp::Scenario sc = opp::disc_world();
+  sc.params.max_iterations = 3000;
+  const opp::Result on = opp::plan(sc.problem, sc.params);
+  sc.params.connect_goal = false;
+  const opp::Result off = opp::plan(sc.problem, sc.params);
+  ASSERT_EQ(on.status, opp::Status::kOk);
+  ASSERT_EQ(off.status, opp::Status::kOk);
+  EXPECT_GT(off.stats.first_solution_iteration, on.stats.first_solution_iteration);
+}
+
+}  // namespace
