@@ -151,7 +151,7 @@ TEST(DnvScenario, MalformedFilesNameFileAndField) {
   EXPECT_NE(error_of(::testing::TempDir() + "dnv_missing.json").find("dnv_missing.json"), std::string::npos);
   // A well-formed file of the same shape converts; with an unknown desired type it does not.
   const std::string ok = write("dnv_ok.json", situation());
-  const auto d = mpgc::sa::read_dnv_situation(ok);
+  const auto d = mpgc::dnv::read_situation(ok);
   EXPECT_EQ(sr::dnv_scenario(d, {"head-on"}).criteria.required.size(), 1u);
   EXPECT_EQ(sr::dnv_scenario(d, {}).criteria.required.size(), 0u);
   try {

@@ -1,5 +1,5 @@
-// DNV ship-traffic-generator situations as scenarios. The reading is situational_awareness's DNV
-// reader (one parser for mpgc_classify and the runner); this file only converts. The choices for
+// DNV ship-traffic-generator situations as scenarios. The reading is common's DNV reader
+// (mpgc/dnv/situation.hpp: one parser for mpgc_classify and the runner); this file only converts. The choices for
 // what the JSON does not give are documented in scenarios/README.md ("DNV situations").
 #include <algorithm>
 #include <cctype>
@@ -46,9 +46,9 @@ std::string name_of(const std::string& path, const std::string& title) {
 
 }  // namespace
 
-Scenario dnv_scenario(const sa::DnvSituation& d, const std::vector<std::string>& desired, const DnvChoices& c) {
+Scenario dnv_scenario(const dnv::Situation& d, const std::vector<std::string>& desired, const DnvChoices& c) {
   const std::string& f = d.path;
-  const sa::DnvShip& own = d.own;
+  const dnv::Ship& own = d.own;
   if (own.waypoints.size() < 2) fail(f, "ownShip.waypoints", "needs at least 2 waypoints (start and goal)");
   if (!std::isfinite(own.length)) fail(f, "ownShip.static.dimensions.length", "missing (it sets the own ship's model)");
   if (own.length < 10.0 || own.length > 500.0) fail(f, "ownShip.static.dimensions.length", "must be in [10, 500] m");
@@ -87,7 +87,7 @@ Scenario dnv_scenario(const sa::DnvSituation& d, const std::vector<std::string>&
   std::set<std::uint32_t> mmsis{own.mmsi};
   YAML::Node targets(YAML::NodeType::Sequence);
   for (std::size_t i = 0; i < d.targets.size(); ++i) {
-    const sa::DnvShip& t = d.targets[i];
+    const dnv::Ship& t = d.targets[i];
     const std::string key = "targetShips[" + std::to_string(i) + "]";
     if (t.sog > 50.0 * geo::kKnot) fail(f, key + ".waypoints[0].leg.sog", "must be <= 50 kn");
     YAML::Node y(YAML::NodeType::Map);
@@ -182,7 +182,7 @@ Scenario dnv_scenario(const sa::DnvSituation& d, const std::vector<std::string>&
   std::string wanted;
   for (std::size_t i = 0; i < d.targets.size() && i < desired.size(); ++i) {
     if (desired[i].empty()) continue;
-    if (sa::from_dnv_name(desired[i]) == colreg::EncounterType::kNone)
+    if (dnv::encounter_type(desired[i]) == colreg::EncounterType::kNone)
       fail(f, "targetShips[" + std::to_string(i) + "]", "desiredEncounterType '" + desired[i] + "' is not a DNV encounter type");
     RequiredEncounter r;
     r.target_id = static_cast<std::uint32_t>(i + 1);
@@ -195,11 +195,11 @@ Scenario dnv_scenario(const sa::DnvSituation& d, const std::vector<std::string>&
 }
 
 Scenario dnv_scenario(const std::string& path, const DnvChoices& choices) {
-  sa::DnvSituation d = sa::read_dnv_situation(path);
+  dnv::Situation d = dnv::read_situation(path);
   std::vector<std::string> desired = d.desired;
   if (desired.empty()) {
-    const std::string in = sa::find_dnv_input(path);
-    if (!in.empty()) desired = sa::read_dnv_desired(in);
+    const std::string in = dnv::find_input(path);
+    if (!in.empty()) desired = dnv::read_desired(in);
   }
   return dnv_scenario(d, desired, choices);
 }

@@ -11,7 +11,7 @@
 
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/json/json.hpp"
-#include "mpgc/situational_awareness/dnv_situation.hpp"
+#include "mpgc/dnv/situation.hpp"
 
 namespace cr = mpgc::colreg;
 namespace geo = mpgc::geo;
@@ -52,12 +52,12 @@ int main(int argc, char** argv) {
   int agree = 0, total = 0, failed = 0;
   for (const std::string& f : files) {
     try {
-      mpgc::sa::DnvSituation s = mpgc::sa::read_dnv_situation(f);
+      mpgc::dnv::Situation s = mpgc::dnv::read_situation(f);
       if (s.desired.empty()) {
-        const std::string in = mpgc::sa::find_dnv_input(f);
-        if (!in.empty()) s.desired = mpgc::sa::read_dnv_desired(in);
+        const std::string in = mpgc::dnv::find_input(f);
+        if (!in.empty()) s.desired = mpgc::dnv::read_desired(in);
       }
-      const auto res = mpgc::sa::assess_dnv(s, p);
+      const auto res = mpgc::dnv::assess(s, p);
       for (size_t i = 0; i < res.size(); ++i) {
         const cr::Assessment& a = res[i].assessment;
         const bool has_desired = i < s.desired.size();

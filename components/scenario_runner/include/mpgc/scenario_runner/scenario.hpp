@@ -10,7 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "mpgc/scenario_runner/evaluation.hpp"
-#include "mpgc/situational_awareness/dnv_situation.hpp"
+#include "mpgc/dnv/situation.hpp"
 
 namespace mpgc::scenario_runner {
 
@@ -92,7 +92,7 @@ struct DnvChoices {
 };
 Scenario dnv_scenario(const std::string& path, const DnvChoices& choices = {});
 // The conversion alone (no file access except the Nomoto table for the heading-controller gains).
-Scenario dnv_scenario(const sa::DnvSituation& situation, const std::vector<std::string>& desired,
+Scenario dnv_scenario(const dnv::Situation& situation, const std::vector<std::string>& desired,
                       const DnvChoices& choices = {});
 
 // Replaces every `<key>_lpp: v` by `<key>_m: v * lpp`, recursively (maps and sequences).

@@ -1,5 +1,7 @@
-// DNV standard encounter set: CPA/TCPA against the published flat-earth values for all 140
-// targets, COLREG classification against desiredEncounterType, and the mpgc_classify tool.
+// The DNV situation reader (common, mpgc/dnv/situation.hpp) on the DNV standard encounter set:
+// CPA/TCPA against the published flat-earth values for all 140 targets, COLREG classification
+// against desiredEncounterType, routes and static data, malformed files. The mpgc_classify tool is
+// tested in tests/situational_awareness/test_classify.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -7,14 +9,12 @@
 #include <map>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/geo/angles.hpp"
-#include "mpgc/situational_awareness/dnv_situation.hpp"
+#include "mpgc/dnv/situation.hpp"
 #include "mpgc/testing.hpp"
 
-namespace sa = mpgc::sa;
+namespace dnv = mpgc::dnv;
 namespace cr = mpgc::colreg;
 using mpgc::testing::shared_data;
 
@@ -72,14 +72,14 @@ TEST(Dnv, CpaTcpaAgreeWithFlatEarthCsvForAll140Targets) {
   const auto rows = read_csv();
   ASSERT_EQ(rows.size(), 140u);
   const auto p = dnv_params();
-  std::map<std::string, std::vector<sa::DnvTargetResult>> cache;
+  std::map<std::string, std::vector<dnv::TargetResult>> cache;
   double worst_flat_d = 0, worst_flat_t = 0, worst_d = 0, worst_t = 0;
   for (const Row& r : rows) {
     SCOPED_TRACE("situation " + r.situation + " target " + std::to_string(r.target));
-    if (!cache.count(r.situation)) cache[r.situation] = sa::assess_dnv(sa::read_dnv_situation(situation_path(r.situation)), p);
+    if (!cache.count(r.situation)) cache[r.situation] = dnv::assess(dnv::read_situation(situation_path(r.situation)), p);
     const auto& res = cache[r.situation];
     ASSERT_LE(static_cast<size_t>(r.target), res.size());
-    const sa::DnvTargetResult& t = res[r.target - 1];
+    const dnv::TargetResult& t = res[r.target - 1];
     // 1. flat offsets from the CSV, same velocities.
     auto flat = t.target;
     flat.x = r.ts_north;
@@ -113,15 +113,15 @@ TEST(Dnv, ClassificationAgreesWithDesiredEncounterType) {
   int agree_dnv = 0, agree_seed = 0;
   for (const Row& r : rows) {
     SCOPED_TRACE("situation " + r.situation + " target " + std::to_string(r.target));
-    sa::DnvSituation s = sa::read_dnv_situation(situation_path(r.situation));
-    const std::string in = sa::find_dnv_input(s.path);
+    dnv::Situation s = dnv::read_situation(situation_path(r.situation));
+    const std::string in = dnv::find_input(s.path);
     ASSERT_FALSE(in.empty());
-    s.desired = sa::read_dnv_desired(in);
+    s.desired = dnv::read_desired(in);
     ASSERT_EQ(s.desired.size(), s.targets.size());
     EXPECT_EQ(s.desired[r.target - 1], r.desired);
-    const auto want = sa::from_dnv_name(r.desired);
-    const auto a_dnv = sa::assess_dnv(s, p_dnv)[r.target - 1].assessment;
-    const auto a_seed = sa::assess_dnv(s, p_seed)[r.target - 1].assessment;
+    const auto want = dnv::encounter_type(r.desired);
+    const auto a_dnv = dnv::assess(s, p_dnv)[r.target - 1].assessment;
+    const auto a_seed = dnv::assess(s, p_seed)[r.target - 1].assessment;
     EXPECT_TRUE(a_dnv.risk);
     EXPECT_EQ(a_dnv.type, want) << cr::to_string(a_dnv.type);
     agree_dnv += a_dnv.type == want;
@@ -161,7 +161,7 @@ TEST(Dnv, MalformedFilesNameTheProblem) {
   for (const auto& [f, what] : std::vector<std::pair<std::string, std::string>>{
            {broken, "parse"}, {nolat, "lat"}, {badlat, "latitude"}, {nan_sog, "sog"}, {dir + "missing.json", "parse"}}) {
     try {
-      sa::read_dnv_situation(f);
+      dnv::read_situation(f);
       ADD_FAILURE() << f << " accepted";
     } catch (const std::runtime_error& e) {
       EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what();
@@ -172,7 +172,7 @@ TEST(Dnv, MalformedFilesNameTheProblem) {
 
 // The whole route and the static data of a generated file; a bad field deep in a route is named.
 TEST(Dnv, RoutesAndDimensionsAreRead) {
-  const auto s = sa::read_dnv_situation(situation_path("01"));
+  const auto s = dnv::read_situation(situation_path("01"));
   ASSERT_EQ(s.own.waypoints.size(), 2u);
   EXPECT_NEAR(mpgc::geo::rad2deg(s.own.waypoints[1].lat), 58.8465724, 1e-9);
   EXPECT_NEAR(s.own.waypoints[1].sog, 10.0 * mpgc::geo::kKnot, 1e-12);
@@ -190,53 +190,11 @@ TEST(Dnv, RoutesAndDimensionsAreRead) {
       "targetShips": [{"initial": {"heading": 0}, "waypoints": [{"position": {"lat": 58.1, "lon": 10.0}, "leg": {"sog": 8}},
                                                             {"position": {"lat": "north", "lon": 10.0}}]}]})";
   try {
-    sa::read_dnv_situation(f);
+    dnv::read_situation(f);
     ADD_FAILURE() << "accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(f + ": targetShips[0].waypoints[1].position.lat: 'north' is not a number"),
               std::string::npos)
         << e.what();
   }
-}
-
-namespace {
-std::pair<int, std::string> run(const std::string& cmd) {
-  std::string out;
-  FILE* p = popen((cmd + " 2>/dev/null").c_str(), "r");
-  if (!p) return {-1, ""};
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int rc = pclose(p);
-  return {WEXITSTATUS(rc), out};
-}
-std::string last_line(const std::string& s) {
-  const auto e = s.find_last_not_of('\n');
-  const auto b = s.rfind('\n', e);
-  return s.substr(b == std::string::npos ? 0 : b + 1, e - (b == std::string::npos ? 0 : b + 1) + 1);
-}
-// The closing JSON line {"agree": N, "total": M} as (N, M); it must be that object and no more.
-std::pair<int, int> agreement(const std::string& out) {
-  const auto j = nlohmann::json::parse(last_line(out));
-  EXPECT_EQ(j.size(), 2u) << j;
-  return {j.at("agree").get<int>(), j.at("total").get<int>()};
-}
-}  // namespace
-
-TEST(ClassifyTool, PrintsTargetsAndAgreementLine) {
-  const std::string exe = mpgc::testing::bin_dir() + "/mpgc_classify";
-  const std::string files = situation_path("01") + " " + situation_path("11") + " " + situation_path("55");
-  auto [rc, out] = run(exe + " --settings " + shared_data("encounters/dnv/encounter_settings.json") + " " + files);
-  EXPECT_EQ(rc, 0);
-  EXPECT_EQ(agreement(out), std::make_pair(6, 6)) << out;
-  EXPECT_NE(out.find("desired head-on [agree]"), std::string::npos);
-  EXPECT_NE(out.find("CPA "), std::string::npos);
-  // Seed 000 sectors: situation 11's first target is a fine crossing, head-on for theta_h = 22.5.
-  std::tie(rc, out) = run(exe + " " + files);
-  EXPECT_EQ(agreement(out), std::make_pair(5, 6)) << out;
-  // A malformed file: error on stderr, exit 1, the others still counted.
-  const std::string bad = ::testing::TempDir() + "sa_tool_bad.json";
-  std::ofstream(bad) << "{";
-  std::tie(rc, out) = run(exe + " " + bad + " " + situation_path("01"));
-  EXPECT_EQ(rc, 1);
-  EXPECT_EQ(agreement(out), std::make_pair(1, 1)) << out;
 }

@@ -1,4 +1,4 @@
-#include "mpgc/situational_awareness/dnv_situation.hpp"
+#include "mpgc/dnv/situation.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -9,7 +9,7 @@
 
 #include "mpgc/geo/geodesy.hpp"
 
-namespace mpgc::sa {
+namespace mpgc::dnv {
 
 namespace fs = std::filesystem;
 
@@ -59,7 +59,7 @@ double speed(const YAML::Node& n, const std::string& path, const std::string& ke
   return v * geo::kKnot;
 }
 
-DnvShip read_ship(const YAML::Node& s, const std::string& path, const std::string& key) {
+Ship read_ship(const YAML::Node& s, const std::string& path, const std::string& key) {
   // Every lookup below is on const nodes: a missing key yields an invalid node, never an insert.
   if (!s) fail(path, key, "missing (an object is required)");
   if (!s.IsMap()) fail(path, key, "is not an object");
@@ -68,7 +68,7 @@ DnvShip read_ship(const YAML::Node& s, const std::string& path, const std::strin
   if (!init.IsMap()) fail(path, key + ".initial", "is not an object");
   const YAML::Node wps = s["waypoints"];
   if (wps && !wps.IsSequence()) fail(path, key + ".waypoints", "is not a list");
-  DnvShip out;
+  Ship out;
   // The route (generated schema): every waypoint needs a position; leg.sog is optional after the first.
   if (wps) {
     if (wps.size() > 10000) fail(path, key + ".waypoints", "has more than 10000 entries");
@@ -76,7 +76,7 @@ DnvShip read_ship(const YAML::Node& s, const std::string& path, const std::strin
       const std::string wk = key + ".waypoints[" + std::to_string(i) + "]";
       const YAML::Node w = wps[i];
       if (!w.IsMap()) fail(path, wk, "is not an object");
-      DnvWaypoint p;
+      Waypoint p;
       std::tie(p.lat, p.lon) = latlon(w["position"], path, wk + ".position");
       const YAML::Node leg = w["leg"];
       if (leg && !leg.IsMap()) fail(path, wk + ".leg", "is not an object");
@@ -120,10 +120,10 @@ DnvShip read_ship(const YAML::Node& s, const std::string& path, const std::strin
 }
 }  // namespace
 
-DnvSituation read_dnv_situation(const std::string& path) {
+Situation read_situation(const std::string& path) {
   const YAML::Node root = load(path);
   if (!root.IsMap()) fail(path, "top level", "is not an object");
-  DnvSituation s;
+  Situation s;
   s.path = path;
   if (root["title"] && root["title"].IsScalar()) s.title = root["title"].as<std::string>();
   s.own = read_ship(root["ownShip"], path, "ownShip");
@@ -133,11 +133,11 @@ DnvSituation read_dnv_situation(const std::string& path) {
   if (ts.size() > 1000) fail(path, "targetShips", "has more than 1000 entries");
   for (size_t i = 0; i < ts.size(); ++i)
     s.targets.push_back(read_ship(ts[i], path, "targetShips[" + std::to_string(i) + "]"));
-  if (root["encounters"]) s.desired = read_dnv_desired(path);
+  if (root["encounters"]) s.desired = read_desired(path);
   return s;
 }
 
-std::vector<std::string> read_dnv_desired(const std::string& path) {
+std::vector<std::string> read_desired(const std::string& path) {
   const YAML::Node root = load(path);
   const YAML::Node enc = root.IsMap() ? root["encounters"] : YAML::Node();
   if (!enc || !enc.IsSequence()) fail(path, "encounters", "missing (a list is required)");
@@ -151,7 +151,7 @@ std::vector<std::string> read_dnv_desired(const std::string& path) {
   return out;
 }
 
-std::string find_dnv_input(const std::string& generated_path) {
+std::string find_input(const std::string& generated_path) {
   const fs::path g(generated_path);
   const std::string stem = g.stem().string();  // traffic_situation_NN
   const auto us = stem.rfind('_');
@@ -168,13 +168,13 @@ std::string find_dnv_input(const std::string& generated_path) {
   return {};
 }
 
-std::vector<DnvTargetResult> assess_dnv(const DnvSituation& s, const colreg::ColregParams& p) {
+std::vector<TargetResult> assess(const Situation& s, const colreg::ColregParams& p) {
   const geo::LocalNed ned({s.own.lat, s.own.lon});
   const auto own = colreg::ShipKinematics::from_course(0.0, 0.0, s.own.heading, s.own.sog, s.own.heading);
-  std::vector<DnvTargetResult> out;
-  for (const DnvShip& t : s.targets) {
+  std::vector<TargetResult> out;
+  for (const Ship& t : s.targets) {
     const geo::NorthEast ne = ned.to_ned({t.lat, t.lon});
-    DnvTargetResult r;
+    TargetResult r;
     r.own = own;
     r.target = colreg::ShipKinematics::from_course(ne.x, ne.y, t.heading, t.sog, t.heading);
     r.assessment = colreg::assess(own, r.target, p);
@@ -183,7 +183,7 @@ std::vector<DnvTargetResult> assess_dnv(const DnvSituation& s, const colreg::Col
   return out;
 }
 
-colreg::EncounterType from_dnv_name(const std::string& n) {
+colreg::EncounterType encounter_type(const std::string& n) {
   using colreg::EncounterType;
   if (n == "head-on") return EncounterType::kHeadOn;
   if (n == "crossing-give-way") return EncounterType::kCrossingGiveWay;
@@ -193,4 +193,4 @@ colreg::EncounterType from_dnv_name(const std::string& n) {
   return EncounterType::kNone;
 }
 
-}  // namespace mpgc::sa
+}  // namespace mpgc::dnv

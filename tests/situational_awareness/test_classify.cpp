@@ -1,0 +1,61 @@
+// mpgc_classify (./mpgc classify): per-target lines and the closing JSON agreement line, with the
+// DNV sector angles and with seed 000's; a malformed file is an error that leaves the others counted.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "mpgc/testing.hpp"
+
+using mpgc::testing::shared_data;
+
+namespace {
+std::string situation_path(const std::string& nn) {
+  return shared_data("encounters/dnv/baseline_situations_generated/traffic_situation_" + nn + ".json");
+}
+std::pair<int, std::string> run(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen((cmd + " 2>/dev/null").c_str(), "r");
+  if (!p) return {-1, ""};
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  const int rc = pclose(p);
+  return {WEXITSTATUS(rc), out};
+}
+std::string last_line(const std::string& s) {
+  const auto e = s.find_last_not_of('\n');
+  const auto b = s.rfind('\n', e);
+  return s.substr(b == std::string::npos ? 0 : b + 1, e - (b == std::string::npos ? 0 : b + 1) + 1);
+}
+// The closing JSON line {"agree": N, "total": M} as (N, M); it must be that object and no more.
+std::pair<int, int> agreement(const std::string& out) {
+  const auto j = nlohmann::json::parse(last_line(out));
+  EXPECT_EQ(j.size(), 2u) << j;
+  return {j.at("agree").get<int>(), j.at("total").get<int>()};
+}
+}  // namespace
+
+TEST(ClassifyTool, PrintsTargetsAndAgreementLine) {
+  const std::string exe = mpgc::testing::bin_dir() + "/mpgc_classify";
+  const std::string files = situation_path("01") + " " + situation_path("11") + " " + situation_path("55");
+  auto [rc, out] = run(exe + " --settings " + shared_data("encounters/dnv/encounter_settings.json") + " " + files);
+  EXPECT_EQ(rc, 0);
+  EXPECT_EQ(agreement(out), std::make_pair(6, 6)) << out;
+  EXPECT_NE(out.find("desired head-on [agree]"), std::string::npos);
+  EXPECT_NE(out.find("CPA "), std::string::npos);
+  // Seed 000 sectors: situation 11's first target is a fine crossing, head-on for theta_h = 22.5.
+  std::tie(rc, out) = run(exe + " " + files);
+  EXPECT_EQ(agreement(out), std::make_pair(5, 6)) << out;
+  // A malformed file: error on stderr, exit 1, the others still counted.
+  const std::string bad = ::testing::TempDir() + "sa_tool_bad.json";
+  std::ofstream(bad) << "{";
+  std::tie(rc, out) = run(exe + " " + bad + " " + situation_path("01"));
+  EXPECT_EQ(rc, 1);
+  EXPECT_EQ(agreement(out), std::make_pair(1, 1)) << out;
+}
