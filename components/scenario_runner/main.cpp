@@ -718,7 +718,7 @@ Outcome run_one(const sr::Scenario& s, const Options& o) {
   }
 
   for (auto& [key, poly] : fixed_polygons) run.obstacles.polygons.push_back(std::move(poly));
-  std::vector<sr::Point2> points;
+  std::vector<mpgc::geom::Vec2> points;
   for (const auto& [x, y] : fixed_points) points.push_back({x, y});
   sr::add_point_obstacles(run.obstacles, points, 0.5);  // point features; boundary points are dropped
   const auto params = sr::evaluation_params(s, run.own.length);

@@ -51,7 +51,7 @@ TEST(Evaluation, PolygonDistanceIsExact) {
 TEST(Evaluation, PointFeaturesAreKeptBoundaryPointsDropped) {
   sr::FixedObstacles obs;
   obs.polygons.push_back({{{0, 0}, {0, 100}, {100, 100}, {100, 0}}});
-  const std::vector<sr::Point2> points{{0, 0},     {0, 20},  {50, 100.2},  // on the boundary (within 0.5 m)
+  const std::vector<mpgc::geom::Vec2> points{{0, 0},     {0, 20},  {50, 100.2},  // on the boundary (within 0.5 m)
                                        {50, 50},                          // inside
                                        {300, 300}, {50, 101}};            // point features
   EXPECT_EQ(sr::add_point_obstacles(obs, points, 0.5), 2u);
@@ -291,7 +291,7 @@ TEST(Evaluation, GridIndexAgreesWithBruteForceOnManyPolygons) {
   double brute_min = 1e300;
   int inside = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const sr::Point2 p{own.states[i].x, own.states[i].y};
+    const mpgc::geom::Vec2 p{own.states[i].x, own.states[i].y};
     double d = std::max(0.0, std::hypot(p.x - 10000, p.y - 10000) - 250);
     for (const auto& poly : obs.polygons) d = std::min(d, sr::distance_to_polygon(p, poly));
     ASSERT_NEAR(ds.fixed[i], d, 1e-9) << "sample " << i;

@@ -31,35 +31,10 @@ void check_track(const ShipTrack& tr, const std::string& name, std::size_t n) {
 
 // --- geometry -----------------------------------------------------------------------------------
 
-double dist(const Point2& a, const Point2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
-
-// Distance from p to segment ab.
-double point_segment(const Point2& p, const Point2& a, const Point2& b) {
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  const double l2 = dx * dx + dy * dy;
-  double u = l2 > 0.0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / l2 : 0.0;
-  u = std::clamp(u, 0.0, 1.0);
-  return std::hypot(p.x - (a.x + u * dx), p.y - (a.y + u * dy));
-}
-
-double cross(const Point2& o, const Point2& a, const Point2& b) {
-  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
-bool segments_intersect(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  const double d1 = cross(c, d, a), d2 = cross(c, d, b), d3 = cross(a, b, c), d4 = cross(a, b, d);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
-  // Touching or collinear cases are covered by the endpoint distances being 0.
-  return false;
-}
-
-double segment_segment(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  if (segments_intersect(a, b, c, d)) return 0.0;
-  return std::min({point_segment(a, c, d), point_segment(b, c, d), point_segment(c, a, b), point_segment(d, a, b)});
-}
+using geom::Vec2;
 
 // Even-odd ray casting; points on the boundary may go either way (their distance is 0 anyway).
-bool inside(const Point2& p, const Polygon& poly) {
+bool inside(Vec2 p, const Polygon& poly) {
   bool in = false;
   const auto& v = poly.vertices;
   for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
@@ -72,7 +47,7 @@ bool inside(const Point2& p, const Polygon& poly) {
 
 struct Box {
   double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
-  void add(const Point2& p) {
+  void add(Vec2 p) {
     x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
   }
   // Lower bound of the distance from anything inside `o` to anything inside this box.
@@ -120,7 +95,7 @@ class ObstacleIndex {
     stamp_.assign(edges_.size(), 0);
   }
 
-  bool inside_any(const Point2& p) const {
+  bool inside_any(Vec2 p) const {
     for (std::size_t k = 0; k < boxes_.size(); ++k)
       if (p.x >= boxes_[k].x0 && p.x <= boxes_[k].x1 && p.y >= boxes_[k].y0 && p.y <= boxes_[k].y1 &&
           inside(p, obs_->polygons[k]))
@@ -129,7 +104,7 @@ class ObstacleIndex {
   }
 
   // Distance from segment ab to the nearest polygon edge (0 when it touches one); +inf if none.
-  double edge_distance(const Point2& a, const Point2& b) const {
+  double edge_distance(Vec2 a, Vec2 b) const {
     if (edges_.empty()) return kInf;
     Box sb;
     sb.add(a), sb.add(b);
@@ -144,21 +119,22 @@ class ObstacleIndex {
           for (std::size_t e : grid_[idx(cx, cy)]) {
             if (stamp_[e] == query_) continue;
             stamp_[e] = query_;
-            best = std::min(best, segment_segment(a, b, edges_[e].first, edges_[e].second));
+            best = std::min(best, geom::segment_distance(a, b, edges_[e].first, edges_[e].second));
           }
       const bool all = x0 == 0 && y0 == 0 && x1 == nx_ - 1 && y1 == ny_ - 1;
       if (best <= r || all) return best;
     }
   }
 
-  double circles_distance(const Point2& a, const Point2& b) const {
+  double circles_distance(Vec2 a, Vec2 b) const {
     double best = kInf;
-    for (const auto& c : obs_->circles) best = std::min(best, std::max(0.0, point_segment(c.centre, a, b) - c.radius));
+    for (const auto& c : obs_->circles)
+      best = std::min(best, std::max(0.0, geom::point_segment_distance(c.centre, a, b) - c.radius));
     return best;
   }
 
   // Exact distance from a point (full inside test).
-  double point_distance(const Point2& p) const {
+  double point_distance(Vec2 p) const {
     return std::min(circles_distance(p, p), inside_any(p) ? 0.0 : edge_distance(p, p));
   }
 
@@ -169,7 +145,7 @@ class ObstacleIndex {
 
   const FixedObstacles* obs_;
   std::vector<Box> boxes_;
-  std::vector<std::pair<Point2, Point2>> edges_;
+  std::vector<std::pair<Vec2, Vec2>> edges_;
   Box all_;
   double cell_ = 1.0;
   long nx_ = 1, ny_ = 1;
@@ -185,7 +161,7 @@ class ObstacleWalker {
  public:
   explicit ObstacleWalker(const ObstacleIndex& index) : index_(index) {}
   // Returns {distance at p, minimum distance on the segment from the previous point to p}.
-  std::pair<double, double> step(const Point2& p) {
+  std::pair<double, double> step(Vec2 p) {
     const double circles = index_.circles_distance(p, p);
     if (!have_) {
       have_ = true, last_ = p, inside_ = index_.inside_any(p);
@@ -204,22 +180,18 @@ class ObstacleWalker {
  private:
   const ObstacleIndex& index_;
   bool have_ = false, inside_ = false;
-  Point2 last_;
+  Vec2 last_;
 };
 
-// Closest distance of two ships moving linearly between samples i and i+1 (exact for straight
-// segments), with the fraction of the interval where it happens.
-std::pair<double, double> closest_on_interval(const ShipState& o0, const ShipState& o1, const ShipState& t0,
-                                              const ShipState& t1) {
-  const double rx = t0.x - o0.x, ry = t0.y - o0.y;
-  const double dx = (t1.x - o1.x) - rx, dy = (t1.y - o1.y) - ry;
-  const double d2 = dx * dx + dy * dy;
-  double u = d2 > 0.0 ? -(rx * dx + ry * dy) / d2 : 0.0;
-  u = std::clamp(u, 0.0, 1.0);
-  return {std::hypot(rx + u * dx, ry + u * dy), u};
-}
+Vec2 pos(const ShipState& s) { return {s.x, s.y}; }
 
-Point2 pos(const ShipState& s) { return {s.x, s.y}; }
+// Closest approach of a target to the own ship between two samples, both moving linearly (exact
+// for straight segments): the relative position goes from r to r + dv over a unit interval; tau is
+// the fraction of the interval where it happens.
+geom::Approach approach(const ShipState& o0, const ShipState& o1, const ShipState& t0, const ShipState& t1) {
+  const Vec2 r = pos(t0) - pos(o0);
+  return geom::closest_approach(r, (pos(t1) - pos(o1)) - r, 1.0);
+}
 
 // Course over ground, or heading when (nearly) stopped, where the course is meaningless.
 double course(const ShipState& s) { return s.sog > 0.1 ? s.cog : s.heading; }
@@ -377,39 +349,39 @@ void PassCriteria::validate() const {
 
 // --- geometry API -----------------------------------------------------------------------------------
 
-double distance_to_polygon(const Point2& p, const Polygon& poly) {
+double distance_to_polygon(Vec2 p, const Polygon& poly) {
   if (poly.vertices.size() < 3) throw std::invalid_argument("distance_to_polygon: fewer than 3 vertices");
   if (inside(p, poly)) return 0.0;
   double best = kInf;
   const auto& v = poly.vertices;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) best = std::min(best, point_segment(p, v[j], v[i]));
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) best = std::min(best, geom::point_segment_distance(p, v[j], v[i]));
   return best;
 }
 
-double distance_to_obstacles(const Point2& p, const FixedObstacles& obs) {
+double distance_to_obstacles(Vec2 p, const FixedObstacles& obs) {
   return ObstacleIndex(obs).point_distance(p);
 }
 
-std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<Point2>& points, double tolerance) {
-  std::vector<Point2> keep;
+std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<Vec2>& points, double tolerance) {
+  std::vector<Vec2> keep;
   {
     FixedObstacles polygons;
     polygons.polygons = obs.polygons;
     const ObstacleIndex index(polygons);
-    for (const Point2& p : points) {
+    for (Vec2 p : points) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw std::invalid_argument("add_point_obstacles: point is not finite");
       if (!index.inside_any(p) && index.edge_distance(p, p) > tolerance) keep.push_back(p);
     }
   }
-  for (const Point2& p : keep) obs.circles.push_back({p, 0.0});
+  for (Vec2 p : keep) obs.circles.push_back({p, 0.0});
   return keep.size();
 }
 
-double distance_to_path(const Point2& p, const std::vector<PlannedWaypoint>& wps) {
+double distance_to_path(Vec2 p, const std::vector<PlannedWaypoint>& wps) {
   if (wps.empty()) throw std::invalid_argument("distance_to_path: no waypoints");
-  double best = dist(p, {wps[0].x, wps[0].y});
+  double best = geom::norm(p - Vec2{wps[0].x, wps[0].y});
   for (std::size_t i = 1; i < wps.size(); ++i)
-    best = std::min(best, point_segment(p, {wps[i - 1].x, wps[i - 1].y}, {wps[i].x, wps[i].y}));
+    best = std::min(best, geom::point_segment_distance(p, {wps[i - 1].x, wps[i - 1].y}, {wps[i].x, wps[i].y}));
   return best;
 }
 
@@ -434,7 +406,7 @@ DistanceSeries distance_series(const RunRecord& run) {
     auto& v = d.target[k];
     v.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      v[i] = dist(pos(run.own.states[i]), pos(run.targets[k].states[i]));
+      v[i] = geom::norm(pos(run.own.states[i]) - pos(run.targets[k].states[i]));
       d.closest[i] = std::min(d.closest[i], v[i]);
     }
   }
@@ -463,14 +435,15 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const E
   e.target_id = tgt.id;
 
   std::vector<double> range(n);
-  for (std::size_t i = 0; i < n; ++i) range[i] = dist(pos(own[i]), pos(tg[i]));
+  for (std::size_t i = 0; i < n; ++i) range[i] = geom::norm(pos(own[i]) - pos(tg[i]));
 
   // Closest approach over [a, b] (sample indices), refined between samples.
   auto closest = [&](std::size_t a, std::size_t b) {
     double best = range[a], tbest = t[a];
     for (std::size_t i = a; i < b; ++i) {
-      const auto [d, u] = closest_on_interval(own[i], own[i + 1], tg[i], tg[i + 1]);
-      if (d < best) best = d, tbest = t[i] + u * (t[i + 1] - t[i]);
+      const geom::Approach c = approach(own[i], own[i + 1], tg[i], tg[i + 1]);
+      const double d = std::sqrt(c.dist2);
+      if (d < best) best = d, tbest = t[i] + c.tau * (t[i + 1] - t[i]);
     }
     return std::pair<double, double>{best, tbest};
   };
@@ -648,18 +621,18 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
   m.safety_distance = run.safety_distance;
 
   // Goal: first entry into the arrival circle, on the segment between samples.
-  const Point2 g{run.goal.x, run.goal.y};
+  const Vec2 g{run.goal.x, run.goal.y};
   std::size_t last = n - 1;  // last sample that counts for path length and tracking
-  if (dist(pos(own[0]), g) <= run.goal.radius) {
+  if (geom::norm(pos(own[0]) - g) <= run.goal.radius) {
     m.goal_reached = true, m.t_goal = t[0], last = 0;
   } else {
     for (std::size_t i = 0; i + 1 < n && !m.goal_reached; ++i) {
-      const Point2 a = pos(own[i]), b = pos(own[i + 1]);
-      if (point_segment(g, a, b) > run.goal.radius) continue;
+      const Vec2 a = pos(own[i]), b = pos(own[i + 1]);
+      if (geom::point_segment_distance(g, a, b) > run.goal.radius) continue;
       // Solve |a + u (b - a) - g| = r for the smaller root u in [0, 1].
-      const double dx = b.x - a.x, dy = b.y - a.y, fx = a.x - g.x, fy = a.y - g.y;
-      const double A = dx * dx + dy * dy, B = 2.0 * (fx * dx + fy * dy),
-                   C = fx * fx + fy * fy - run.goal.radius * run.goal.radius;
+      const Vec2 ab = b - a, ga = a - g;
+      const double A = geom::norm2(ab), B = 2.0 * geom::dot(ga, ab),
+                   C = geom::norm2(ga) - run.goal.radius * run.goal.radius;
       const double disc = std::max(0.0, B * B - 4.0 * A * C);
       const double u = A > 0.0 ? std::clamp((-B - std::sqrt(disc)) / (2.0 * A), 0.0, 1.0) : 0.0;
       m.goal_reached = true;
@@ -667,17 +640,18 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
       last = i + 1;
     }
   }
-  m.straight_line = dist(pos(own[0]), g);
-  for (std::size_t i = 0; i < last; ++i) m.path_length += dist(pos(own[i]), pos(own[i + 1]));
+  m.straight_line = geom::norm(pos(own[0]) - g);
+  for (std::size_t i = 0; i < last; ++i) m.path_length += geom::norm(pos(own[i]) - pos(own[i + 1]));
 
   // Distances: exact minimum between samples; violation time from the sampled closest distance.
   m.min_distance = kInf;
   for (std::size_t k = 0; k < run.targets.size(); ++k) {
     const auto& tg = run.targets[k].states;
-    TargetDistance td{run.targets[k].id, dist(pos(own[0]), pos(tg[0])), t[0]};
+    TargetDistance td{run.targets[k].id, geom::norm(pos(own[0]) - pos(tg[0])), t[0]};
     for (std::size_t i = 0; i + 1 < n; ++i) {
-      const auto [d, u] = closest_on_interval(own[i], own[i + 1], tg[i], tg[i + 1]);
-      if (d < td.min_distance) td.min_distance = d, td.t_min = t[i] + u * (t[i + 1] - t[i]);
+      const geom::Approach a = approach(own[i], own[i + 1], tg[i], tg[i + 1]);
+      const double d = std::sqrt(a.dist2);
+      if (d < td.min_distance) td.min_distance = d, td.t_min = t[i] + a.tau * (t[i + 1] - t[i]);
     }
     m.min_distance = std::min(m.min_distance, td.min_distance);
     m.min_distance_targets.push_back(td);
@@ -729,7 +703,7 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
   };
   if (criteria.goal_required && !m.goal_reached) {
     double closest = kInf;
-    for (const auto& s : own) closest = std::min(closest, dist(pos(s), g));
+    for (const auto& s : own) closest = std::min(closest, geom::norm(pos(s) - g));
     m.failures.push_back("goal not reached (closest " + fmt(closest) + " m, arrival radius " + fmt(run.goal.radius) + " m)");
   }
   const double limit = run.safety_distance * (1.0 - criteria.safety_tolerance);

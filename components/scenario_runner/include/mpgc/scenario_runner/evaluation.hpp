@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "mpgc/colreg/colreg.hpp"
+#include "mpgc/geom/vec2.hpp"
 
 namespace mpgc::scenario_runner {
 
@@ -71,17 +72,13 @@ struct GuidanceRecord {
   double cross_track_error = kNaN;  // [m] as reported by guidance, positive to starboard
 };
 
-struct Point2 {
-  double x = 0.0;  // [m] north
-  double y = 0.0;  // [m] east
-};
-// Fixed obstacles in NED: polygons (land, walls; simple, either orientation, closing vertex
-// optional) and circles (radius 0 = a point obstacle).
+// Fixed obstacles in NED (points are geom::Vec2: x north, y east [m]): polygons (land, walls;
+// simple, either orientation, closing vertex optional) and circles (radius 0 = a point obstacle).
 struct Polygon {
-  std::vector<Point2> vertices;  // >= 3
+  std::vector<geom::Vec2> vertices;  // >= 3
 };
 struct Circle {
-  Point2 centre;
+  geom::Vec2 centre;
   double radius = 0.0;  // [m] >= 0
 };
 struct FixedObstacles {
@@ -304,16 +301,16 @@ struct DistanceSeries {
 DistanceSeries distance_series(const RunRecord& run);
 
 // Distance from p to a polygon's area (0 inside or on the boundary), exact.
-double distance_to_polygon(const Point2& p, const Polygon& poly);
+double distance_to_polygon(geom::Vec2 p, const Polygon& poly);
 // Distance from p to the fixed obstacles (circles: to the disc). +inf when there are none.
-double distance_to_obstacles(const Point2& p, const FixedObstacles& obs);
+double distance_to_obstacles(geom::Vec2 p, const FixedObstacles& obs);
 // Appends the point obstacles among `points` to `obs` as zero-radius circles: those outside every
 // polygon of `obs` and farther than `tolerance` [m] from every polygon edge. obstacle_manager
 // publishes the densified polygon boundaries and the chart's point features (e.g. OBSTRN points)
 // as one point set; this keeps the point features. Returns how many were added.
-std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<Point2>& points, double tolerance);
+std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<geom::Vec2>& points, double tolerance);
 // Distance from p to the polyline through the waypoints (>= 1 waypoint).
-double distance_to_path(const Point2& p, const std::vector<PlannedWaypoint>& wps);
+double distance_to_path(geom::Vec2 p, const std::vector<PlannedWaypoint>& wps);
 // Index of the plan active at each sample (last kOk/kRelaxed plan with plan.t <= t[i]); -1: none.
 std::vector<int> active_plan_index(const RunRecord& run);
 
