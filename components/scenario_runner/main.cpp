@@ -877,6 +877,7 @@ int main(int argc, char** argv) {
                 num_text(m.safety_violation_s).c_str(), m.replans, m.relaxed_plans, num_text(m.planning.p95_ms, "%.1f").c_str(),
                 num_text(m.sim_s).c_str(), num_text(m.wall_s, "%.1f").c_str());
     for (const auto& f : m.failures) std::printf("    why: %s\n", f.c_str());
+    if (const std::string c = sr::close_calls_text(m); !c.empty()) std::printf("    close: %s\n", c.c_str());
     for (const auto& n : r.notes) std::printf("    network: %s\n", n.c_str());
   }
   std::printf("%zu passed, %d failed   (outputs in %s/<scenario>/: metrics.json, timeseries.csv, trajectory.svg, dtc.svg)\n",

@@ -86,6 +86,74 @@ TEST(Evaluation, MinDistanceAndSafetyViolationAreExact) {
   }
 }
 
+// Near misses and likely collisions (r_nm 50 m, r_col_cpa 30 m unscaled): a target stopped 40 m
+// off the own track, one 20 m off and one 1200 m off. The least distances fall between samples
+// (dt = 7 s), and a likely collision is a near miss too.
+TEST(Evaluation, NearMissesAndLikelyCollisionsPerTarget) {
+  const auto t = sr::synthetic::times(400, 7.0);
+  auto own = sail(0, 10, -2000, 0, 0, 10, {}, t);
+  auto near = sail(1, 10, 0, 40, 0, 0, {}, t);
+  auto hit = sail(2, 10, 500, -20, 0, 0, {}, t);
+  auto far = sail(3, 10, -500, 1200, 0, 0, {}, t);
+  auto r = sr::synthetic::run_of(t, own, {near, hit, far}, 100.0);
+  sr::PassCriteria c;
+  c.goal_required = false;
+  c.max_safety_violation_s = 1e6;
+  const auto m = sr::evaluate(r, {}, c);
+  ASSERT_EQ(m.min_distance_targets.size(), 3u);
+  EXPECT_NEAR(m.min_distance_targets[0].min_distance, 40.0, 1e-9);
+  EXPECT_TRUE(m.min_distance_targets[0].near_miss);
+  EXPECT_FALSE(m.min_distance_targets[0].likely_collision);
+  EXPECT_NEAR(m.min_distance_targets[1].min_distance, 20.0, 1e-9);
+  EXPECT_TRUE(m.min_distance_targets[1].near_miss);
+  EXPECT_TRUE(m.min_distance_targets[1].likely_collision);
+  EXPECT_FALSE(m.min_distance_targets[2].near_miss);
+  EXPECT_FALSE(m.min_distance_targets[2].likely_collision);
+  EXPECT_EQ(m.near_miss_targets(), (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(m.likely_collision_targets(), (std::vector<std::uint32_t>{2}));
+  EXPECT_DOUBLE_EQ(m.r_nm, 50.0);
+  EXPECT_DOUBLE_EQ(m.r_col_cpa, 30.0);
+  // d_safety 100 m must be kept: the run fails on the distance, and the likely collision with
+  // target 2 is named; the near miss of target 1 is not a failure of its own.
+  EXPECT_FALSE(m.passed);
+  ASSERT_EQ(m.failures.size(), 2u);
+  EXPECT_NE(m.failures[0].find("min distance 20.0 m < 100.0 m"), std::string::npos) << m.failures[0];
+  EXPECT_EQ(m.failures[1], "target 2: likely collision (least distance 20.0 m < r_col_cpa 30.0 m)");
+  // Scaled to a 320 m ship (r_nm 1600 m, r_col_cpa 960 m) every target is a near miss, targets 1
+  // and 2 likely collisions.
+  const auto big = sr::evaluate(r, sr::EvaluationParams::scaled_to(320.0), c);
+  EXPECT_EQ(big.near_miss_targets(), (std::vector<std::uint32_t>{1, 2, 3}));
+  EXPECT_EQ(big.likely_collision_targets(), (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_DOUBLE_EQ(big.r_nm, 1600.0);
+}
+
+// A likely collision fails the run only where the safety criterion already asks for that
+// distance: with d_safety 10 m a pass at 20 m is reported (below r_col_cpa 30 m), not failed.
+TEST(Evaluation, LikelyCollisionFailsOnlyWhereDSafetyAsksForIt) {
+  const auto t = sr::synthetic::times(400, 1.0);
+  auto own = sail(0, 10, -2000, 0, 0, 10, {}, t);
+  auto hit = sail(2, 10, 0, -20, 0, 0, {}, t);
+  auto r = sr::synthetic::run_of(t, own, {hit}, 10.0);
+  sr::PassCriteria c;
+  c.goal_required = false;
+  auto m = sr::evaluate(r, {}, c);
+  EXPECT_EQ(m.likely_collision_targets(), (std::vector<std::uint32_t>{2}));
+  EXPECT_TRUE(m.passed) << (m.failures.empty() ? "" : m.failures[0]);
+  // d_safety 25 m with 10 % tolerance (limit 22.5 m): 20 m fails on both counts.
+  r.safety_distance = 25.0;
+  c.safety_tolerance = 0.1;
+  c.max_safety_violation_s = 1e6;
+  m = sr::evaluate(r, {}, c);
+  ASSERT_EQ(m.failures.size(), 2u);
+  EXPECT_NE(m.failures[1].find("target 2: likely collision"), std::string::npos) << m.failures[1];
+  // A likely collision beyond the near-miss range is a contradiction: rejected.
+  sr::EvaluationParams p;
+  p.r_col_cpa = 60.0;
+  EXPECT_THROW(sr::evaluate(r, p, c), std::invalid_argument);
+  p.r_col_cpa = 50.0;  // equal is allowed
+  EXPECT_NO_THROW(sr::evaluate(r, p, c));
+}
+
 TEST(Evaluation, FixedObstacleDistanceBetweenSamples) {
   auto r = pass_by(7.0);
   r.targets.clear();

@@ -95,6 +95,12 @@ TEST(Report, WritesMetricsCsvAndFigures) {
   EXPECT_DOUBLE_EQ(j["tracking_rmse_m"].as<double>(), m.tracking_rmse);
   EXPECT_DOUBLE_EQ(j["wall_s"].as<double>(), 12.5);
   EXPECT_DOUBLE_EQ(j["sim_s"].as<double>(), 6000.0);
+  // Near misses: target 2 passes at 2086 m, above r_nm = 5 Lpp = 1600 m: none.
+  EXPECT_DOUBLE_EQ(j["near_misses"]["r_nm_m"].as<double>(), 1600.0);
+  EXPECT_EQ(j["near_misses"]["count"].as<int>(), 0);
+  EXPECT_EQ(j["near_misses"]["targets"].size(), 0u);
+  EXPECT_DOUBLE_EQ(j["likely_collisions"]["r_col_cpa_m"].as<double>(), 960.0);
+  EXPECT_EQ(j["likely_collisions"]["count"].as<int>(), 0);
   ASSERT_EQ(j["encounters"].size(), 2u);
   EXPECT_EQ(j["encounters"][0]["situation"].as<std::string>(), "crossing-give-way");
   EXPECT_EQ(j["encounters"][0]["role"].as<std::string>(), "give-way");
@@ -147,6 +153,35 @@ TEST(Report, JsonHasNullForMissingValuesAndEscapesText) {
   EXPECT_TRUE(j["wall_s"].IsNull());
   EXPECT_EQ(j["failures"][0].as<std::string>(), m.failures[0]);
   EXPECT_EQ(j["encounters"].size(), 0u);
+  EXPECT_TRUE(j["near_misses"]["r_nm_m"].IsNull());  // no evaluation: thresholds n/a
+  EXPECT_EQ(j["near_misses"]["count"].as<int>(), 0);
+}
+
+// Near misses and likely collisions in metrics.json and in the run summary's text: counts and
+// which targets.
+TEST(Report, NearMissesAndLikelyCollisionsAreListed) {
+  sr::Metrics m;
+  m.r_nm = 1600.0;
+  m.r_col_cpa = 960.0;
+  EXPECT_EQ(sr::close_calls_text(m), "");
+  m.min_distance_targets = {{1, 1234.5, 100.0, true, false}, {2, 2500.0, 50.0, false, false},
+                            {3, 500.0, 80.0, true, true}};
+  std::ostringstream s;
+  sr::write_metrics_json(s, m, {});
+  const YAML::Node j = YAML::Load(s.str());
+  EXPECT_EQ(j["near_misses"]["count"].as<int>(), 2);
+  ASSERT_EQ(j["near_misses"]["targets"].size(), 2u);
+  EXPECT_EQ(j["near_misses"]["targets"][0].as<int>(), 1);
+  EXPECT_EQ(j["near_misses"]["targets"][1].as<int>(), 3);
+  EXPECT_EQ(j["likely_collisions"]["count"].as<int>(), 1);
+  ASSERT_EQ(j["likely_collisions"]["targets"].size(), 1u);
+  EXPECT_EQ(j["likely_collisions"]["targets"][0].as<int>(), 3);
+  EXPECT_DOUBLE_EQ(j["likely_collisions"]["r_col_cpa_m"].as<double>(), 960.0);
+  EXPECT_EQ(sr::close_calls_text(m),
+            "near misses 2 (target 1 at 1234.5 m, target 3 at 500.0 m; r_nm 1600.0 m), "
+            "likely collisions 1 (target 3; r_col_cpa 960.0 m)");
+  m.min_distance_targets[2].likely_collision = false;
+  EXPECT_EQ(sr::close_calls_text(m), "near misses 2 (target 1 at 1234.5 m, target 3 at 500.0 m; r_nm 1600.0 m)");
 }
 
 TEST(Report, BadOptionsAndUnwritableDirectoryAreErrors) {

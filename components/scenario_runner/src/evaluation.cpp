@@ -249,6 +249,19 @@ const char* to_string(colreg::Role r) {
   return "?";
 }
 
+std::vector<std::uint32_t> Metrics::near_miss_targets() const {
+  std::vector<std::uint32_t> ids;
+  for (const TargetDistance& td : min_distance_targets)
+    if (td.near_miss) ids.push_back(td.target_id);
+  return ids;
+}
+std::vector<std::uint32_t> Metrics::likely_collision_targets() const {
+  std::vector<std::uint32_t> ids;
+  for (const TargetDistance& td : min_distance_targets)
+    if (td.likely_collision) ids.push_back(td.target_id);
+  return ids;
+}
+
 // --- validation -----------------------------------------------------------------------------------
 
 void RunRecord::validate() const {
@@ -337,6 +350,8 @@ void EvaluationParams::validate() const {
   pos_(theta_sm_lim, "theta_sm_lim");
   if (!(r_colregs_4_max <= r_colregs_3_max && r_colregs_3_max <= r_colregs_2_max))
     throw std::invalid_argument("EvaluationParams: stage ranges must satisfy r_colregs_4_max <= r_colregs_3_max <= r_colregs_2_max");
+  if (!(r_col_cpa <= r_nm))
+    throw std::invalid_argument("EvaluationParams: r_col_cpa must be <= r_nm (a likely collision is a near miss too)");
   colreg.validate();
 }
 
@@ -619,6 +634,8 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
   const std::size_t n = t.size();
   m.sim_s = t.back() - t.front();
   m.safety_distance = run.safety_distance;
+  m.r_nm = p.r_nm;
+  m.r_col_cpa = p.r_col_cpa;
 
   // Goal: first entry into the arrival circle, on the segment between samples.
   const Vec2 g{run.goal.x, run.goal.y};
@@ -653,6 +670,8 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
       const double d = std::sqrt(a.dist2);
       if (d < td.min_distance) td.min_distance = d, td.t_min = t[i] + a.tau * (t[i + 1] - t[i]);
     }
+    td.near_miss = td.min_distance < p.r_nm;
+    td.likely_collision = td.min_distance < p.r_col_cpa;
     m.min_distance = std::min(m.min_distance, td.min_distance);
     m.min_distance_targets.push_back(td);
   }
@@ -710,6 +729,14 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
   if (std::isfinite(m.min_distance) && m.min_distance < limit)
     m.failures.push_back("min distance " + fmt(m.min_distance) + " m < " + fmt(limit) + " m (d_safety " +
                          fmt(run.safety_distance) + " m, tolerance " + fmt(100.0 * criteria.safety_tolerance) + " %)");
+  // A likely collision is always a failure of a run that must keep d_safety, and every run must
+  // keep limit > 0: one closer than the limit fails already, this line says it was a collision.
+  // Closer than r_col_cpa but not than the limit (a small d_safety) is reported, not failed: the
+  // scenario's requirements do not ask for more.
+  for (const TargetDistance& td : m.min_distance_targets)
+    if (td.likely_collision && td.min_distance < limit)
+      m.failures.push_back("target " + std::to_string(td.target_id) + ": likely collision (least distance " +
+                           fmt(td.min_distance) + " m < r_col_cpa " + fmt(p.r_col_cpa) + " m)");
   if (m.safety_violation_s > criteria.max_safety_violation_s)
     m.failures.push_back("below d_safety for " + fmt(m.safety_violation_s) + " s (allowed " +
                          fmt(criteria.max_safety_violation_s) + " s)");

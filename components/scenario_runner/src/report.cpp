@@ -55,6 +55,9 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
   j["min_distance_m"] = {{"overall", number(m.min_distance)}, {"fixed", number(m.min_distance_fixed)}, {"targets", targets}};
   j["safety_distance_m"] = number(m.safety_distance);
   j["safety_violation_s"] = number(m.safety_violation_s);
+  const auto near = m.near_miss_targets(), collisions = m.likely_collision_targets();
+  j["near_misses"] = {{"r_nm_m", number(m.r_nm)}, {"count", near.size()}, {"targets", near}};
+  j["likely_collisions"] = {{"r_col_cpa_m", number(m.r_col_cpa)}, {"count", collisions.size()}, {"targets", collisions}};
   j["path_length_m"] = number(m.path_length);
   j["straight_line_m"] = number(m.straight_line);
   j["planning_ms"] = {{"median", number(m.planning.median_ms)}, {"p95", number(m.planning.p95_ms)},
@@ -120,6 +123,25 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
   for (const auto& [c, n] : per_component) recoveries[c] = {{"faulted", n.first}, {"recovered", n.second}};
   j["recoveries"] = std::move(recoveries);
   o << j.dump(2) << "\n";
+}
+
+std::string close_calls_text(const Metrics& m) {
+  auto f1 = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1f", v);
+    return std::string(b);
+  };
+  std::string near, collisions;
+  int n_near = 0, n_col = 0;
+  for (const TargetDistance& td : m.min_distance_targets) {
+    const std::string id = "target " + std::to_string(td.target_id);
+    if (td.near_miss) near += (n_near++ ? ", " : "") + id + " at " + f1(td.min_distance) + " m";
+    if (td.likely_collision) collisions += (n_col++ ? ", " : "") + id;
+  }
+  if (n_near == 0 && n_col == 0) return "";
+  std::string s = "near misses " + std::to_string(n_near) + " (" + near + "; r_nm " + f1(m.r_nm) + " m)";
+  if (n_col > 0) s += ", likely collisions " + std::to_string(n_col) + " (" + collisions + "; r_col_cpa " + f1(m.r_col_cpa) + " m)";
+  return s;
 }
 
 void write_timeseries_csv(std::ostream& o, const RunRecord& run) {

@@ -149,6 +149,8 @@ struct EvaluationParams {
   double r_colregs_4_max = 200.0;   // [m]
   double r_pref = 190.0;            // [m] preferred passing distance; wider predicted CPA = no risk
   double r_min_cpa = 100.0;         // [m] minimum acceptable CPA (keeping clear when overtaking)
+  // Per target, from its least distance (Metrics::min_distance_targets): below r_nm a near miss,
+  // below r_col_cpa a likely collision (which is a near miss too). r_col_cpa <= r_nm.
   double r_nm = 50.0;               // [m] near miss
   double r_col_cpa = 30.0;          // [m] CPA at which a collision most likely happened
 
@@ -157,6 +159,7 @@ struct EvaluationParams {
   double epsilon_d_course = geo::deg2rad(0.3);  // [rad/s] detectable course rate
   double delta_course_md = geo::deg2rad(2.0);   // [rad] minimum detectable course change
   double delta_speed_md = 0.2;                  // [-] minimum detectable speed change / original
+  // delta_course_app: used by the rule-8 check to come (issue 17); no verdict reads it yet.
   double delta_course_app = geo::deg2rad(30.0); // [rad] readily apparent course change
   double delta_speed_reduction_app = 0.5;       // [-] readily apparent speed reduction / original
   double theta_sm_lim = geo::deg2rad(10.0);     // [rad] course change that counts as a starboard
@@ -260,6 +263,8 @@ struct TargetDistance {
   std::uint32_t target_id = 0;
   double min_distance = kNaN;  // [m]
   double t_min = kNaN;         // [s]
+  bool near_miss = false;         // min_distance < EvaluationParams::r_nm
+  bool likely_collision = false;  // min_distance < EvaluationParams::r_col_cpa
 };
 
 struct Metrics {
@@ -274,6 +279,13 @@ struct Metrics {
   std::vector<TargetDistance> min_distance_targets;
   double safety_distance = kNaN;     // [m] d_safety
   double safety_violation_s = 0.0;   // [s] time below d_safety (closest obstacle)
+  // Near misses and likely collisions with targets (flags in min_distance_targets), and the
+  // thresholds they were judged by. A likely collision fails the run where the safety criterion
+  // does too (every run must keep d_safety (1 - tolerance)); the failure then names it.
+  double r_nm = kNaN;       // [m] EvaluationParams::r_nm used
+  double r_col_cpa = kNaN;  // [m] EvaluationParams::r_col_cpa used
+  std::vector<std::uint32_t> near_miss_targets() const;         // ids, in target order
+  std::vector<std::uint32_t> likely_collision_targets() const;  // ids, in target order
 
   double path_length = 0.0;    // [m] sailed by the own ship
   double straight_line = 0.0;  // [m] start to goal

@@ -34,6 +34,7 @@ struct ReportOptions {
 
 // metrics.json: one object. Keys: scenario, passed, failures[], goal_reached, time_to_goal_s,
 // min_distance_m {overall, fixed, targets {"<id>": m}}, safety_distance_m, safety_violation_s,
+// near_misses {r_nm_m, count, targets [ids]}, likely_collisions {r_col_cpa_m, count, targets [ids]},
 // path_length_m, straight_line_m, planning_ms {median, p95, max}, replans, relaxed_plans,
 // no_path_plans, tracking_rmse_m, wall_s, sim_s, evaluation_scale, encounters[] {target_id,
 // encountered, situation, role, t_start_s, range_start_m, beta_start_deg, alpha_start_deg,
@@ -42,6 +43,11 @@ struct ReportOptions {
 // passed_port_to_port, not_crossed_ahead, kept_clear, held_course_and_speed: "pass"|"fail"|"n/a"},
 // t_hold_end_s, conflicting_obligation, compliant}.
 void write_metrics_json(std::ostream& out, const Metrics& m, const ReportOptions& opt);
+
+// The near misses and likely collisions of the run summary, e.g. "near misses 2 (target 1 at
+// 1234.5 m, target 3 at 500.0 m; r_nm 1600.0 m), likely collisions 1 (target 3; r_col_cpa
+// 960.0 m)"; "" when there is neither.
+std::string close_calls_text(const Metrics& m);
 
 // One row per truth sample: t_s; own_x_m, own_y_m, own_heading_rad, own_cog_rad, own_sog_mps; per
 // target tgt<id>_x_m ... tgt<id>_sog_mps and dist_tgt<id>_m; dist_fixed_m (with fixed obstacles);
