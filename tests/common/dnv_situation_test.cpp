@@ -198,3 +198,15 @@ TEST(Dnv, RoutesAndDimensionsAreRead) {
         << e.what();
   }
 }
+
+// desiredEncounterType names to types: every DNV name of colreg::dnv_name comes back, anything else
+// (the no-risk name too) is kNone.
+TEST(Dnv, EncounterTypeIsTheInverseOfDnvName) {
+  for (const auto t : {cr::EncounterType::kHeadOn, cr::EncounterType::kCrossingGiveWay, cr::EncounterType::kCrossingStandOn,
+                       cr::EncounterType::kOvertaking, cr::EncounterType::kOvertaken})
+    EXPECT_EQ(dnv::encounter_type(cr::dnv_name(t)), t) << cr::dnv_name(t);
+  EXPECT_EQ(dnv::encounter_type("overtaking-give-way"), cr::EncounterType::kOvertaking);
+  EXPECT_EQ(dnv::encounter_type("overtaking"), cr::EncounterType::kNone);  // ours, not DNV's
+  EXPECT_EQ(dnv::encounter_type("noRiskCollision"), cr::EncounterType::kNone);
+  EXPECT_EQ(dnv::encounter_type(""), cr::EncounterType::kNone);
+}

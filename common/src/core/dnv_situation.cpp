@@ -185,11 +185,10 @@ std::vector<TargetResult> assess(const Situation& s, const colreg::ColregParams&
 
 colreg::EncounterType encounter_type(const std::string& n) {
   using colreg::EncounterType;
-  if (n == "head-on") return EncounterType::kHeadOn;
-  if (n == "crossing-give-way") return EncounterType::kCrossingGiveWay;
-  if (n == "crossing-stand-on") return EncounterType::kCrossingStandOn;
-  if (n == "overtaking-give-way") return EncounterType::kOvertaking;
-  if (n == "overtaking-stand-on") return EncounterType::kOvertaken;
+  // The inverse of colreg::dnv_name, so that the DNV names are written once.
+  for (const EncounterType t : {EncounterType::kHeadOn, EncounterType::kCrossingGiveWay, EncounterType::kCrossingStandOn,
+                                EncounterType::kOvertaking, EncounterType::kOvertaken})
+    if (n == colreg::dnv_name(t)) return t;
   return EncounterType::kNone;
 }
 
