@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
       om::BoxNE bounds{0, 0, 0, 0};
       std::string stamp;
       om::RegionPolicy region;
-      std::optional<om::PointNE> own;
+      std::optional<mpgc::geom::Vec2> own;
       om::MovingObstacleFeed feed;
       uint32_t version = 0;
       bool origin_warned = false;
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
     auto* fixed_out = &c->publisher<msg::FixedObstacles>(mpgc::topics::kFixedObstacles, mpgc::dds::QosProfile::latched());
     auto* moving_out = &c->publisher<msg::MovingObstacles>(mpgc::topics::kMovingObstacles, mpgc::dds::QosProfile::state());
 
-    auto publish_fixed = [c, &p, st, fixed_out](om::PointNE centre) {
+    auto publish_fixed = [c, &p, st, fixed_out](mpgc::geom::Vec2 centre) {
       const om::BoxNE box = st->region.publish(centre, st->bounds);
       const om::ObstacleSet part = st->region.whole_chart() ? st->chart : om::crop(st->chart, box);
       msg::FixedObstacles m;
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
     c->subscribe<msg::NavState>(
         mpgc::topics::kOwnState, mpgc::dds::QosProfile::state(),
         [c, &p, st, frame, publish_fixed](const msg::NavState& s) {
-          st->own = om::PointNE{s.x, s.y};
+          st->own = mpgc::geom::Vec2{s.x, s.y};
           if (!st->origin_warned && std::isfinite(s.lat) && std::isfinite(s.lon) && (s.lat != 0.0 || s.lon != 0.0)) {
             const auto q = frame.to_ned({s.lat, s.lon});
             const double off = std::hypot(q.x - s.x, q.y - s.y);

@@ -37,7 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (r.flag()) {
       const msg::NavState s = fz::nav_state(r);
       if (!om::check_nav(s).empty()) continue;
-      const om::PointNE own{s.x, s.y};
+      const mpgc::geom::Vec2 own{s.x, s.y};
       if (region.needs_update(own)) {
         const om::BoxNE box = region.publish(own, bounds);
         if (!region.whole_chart()) (void)om::crop(set, box);

@@ -19,7 +19,7 @@
 namespace om = mpgc::obstacle_manager;
 namespace fs = std::filesystem;
 using mpgc::geo::deg2rad;
-using om::PointNE;
+using mpgc::geom::Vec2;
 
 namespace {
 
@@ -53,7 +53,7 @@ std::vector<Labelled> labelled_points() {
   return out;
 }
 
-PointNE ned(const om::ChartBuilder& b, double lon, double lat) {
+mpgc::geom::Vec2 ned(const om::ChartBuilder& b, double lon, double lat) {
   const auto p = b.frame().to_ned({deg2rad(lat), deg2rad(lon)});
   return {p.x, p.y};
 }
@@ -196,7 +196,7 @@ TEST(Chart, InlineShapes) {
 }
 
 TEST(Chart, DensifyRespectsSpacing) {
-  const std::vector<PointNE> ring{{0, 0}, {100, 0}, {100, 35}, {0, 35}};
+  const std::vector<mpgc::geom::Vec2> ring{{0, 0}, {100, 0}, {100, 35}, {0, 35}};
   const auto pts = om::densify_ring(ring, 10.0);
   EXPECT_EQ(pts.size(), 10u + 4u + 10u + 4u);
   for (size_t i = 0; i < pts.size(); ++i) {

@@ -16,6 +16,7 @@
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
 #include "mpgc/msg/tracks.hpp"
+#include "mpgc/geo/geodesy.hpp"
 #include "mpgc/obstacle_manager/msg_convert.hpp"
 #include "mpgc/testing.hpp"
 #include "mpgc/testing_dds.hpp"

@@ -10,19 +10,19 @@
 #include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
 
 namespace om = mpgc::obstacle_manager;
-using om::PointNE;
+using mpgc::geom::Vec2;
 
 namespace {
 
-std::vector<PointNE> random_points(std::mt19937_64& rng, size_t n, double half) {
+std::vector<mpgc::geom::Vec2> random_points(std::mt19937_64& rng, size_t n, double half) {
   std::uniform_real_distribution<double> u(-half, half);
-  std::vector<PointNE> pts(n);
+  std::vector<mpgc::geom::Vec2> pts(n);
   for (auto& p : pts) p = {u(rng), u(rng)};
   return pts;
 }
 
 // A star-shaped (simple) polygon around c with n vertices of random radius in [r/2, r].
-om::Polygon random_star(std::mt19937_64& rng, PointNE c, double r, int n, uint32_t id) {
+om::Polygon random_star(std::mt19937_64& rng, mpgc::geom::Vec2 c, double r, int n, uint32_t id) {
   std::uniform_real_distribution<double> u(0.5 * r, r);
   om::Polygon g;
   g.feature_id = id;
@@ -34,7 +34,7 @@ om::Polygon random_star(std::mt19937_64& rng, PointNE c, double r, int n, uint32
   return g;
 }
 
-bool brute_inside(const std::vector<om::Polygon>& polys, PointNE p) {
+bool brute_inside(const std::vector<om::Polygon>& polys, mpgc::geom::Vec2 p) {
   // Even-odd per feature id, union over features (independent of the library's tree).
   std::map<uint32_t, int> parity;
   for (const auto& g : polys) {
@@ -51,14 +51,14 @@ bool brute_inside(const std::vector<om::Polygon>& polys, PointNE p) {
   return false;
 }
 
-double brute_segment_clearance(const std::vector<PointNE>& pts, const std::vector<om::Polygon>& polys, PointNE a,
-                               PointNE b) {
+double brute_segment_clearance(const std::vector<mpgc::geom::Vec2>& pts, const std::vector<om::Polygon>& polys, mpgc::geom::Vec2 a,
+                               mpgc::geom::Vec2 b) {
   if (brute_inside(polys, a)) return 0.0;
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& p : pts) best = std::min(best, om::segment_distance(a, b, p, p));
+  for (const auto& p : pts) best = std::min(best, mpgc::geom::segment_distance(a, b, p, p));
   for (const auto& g : polys)
     for (size_t i = 0; i < g.ring.size(); ++i)
-      best = std::min(best, om::segment_distance(a, b, g.ring[i], g.ring[(i + 1) % g.ring.size()]));
+      best = std::min(best, mpgc::geom::segment_distance(a, b, g.ring[i], g.ring[(i + 1) % g.ring.size()]));
   return best;
 }
 
@@ -72,7 +72,7 @@ TEST(FixedObstacleMap, NearestAndRadiusEqualBruteForceOnRandomSets) {
     om::FixedObstacleMap map(pts, {});
     std::uniform_real_distribution<double> q(-1200.0, 1200.0), rr(0.0, 150.0);
     for (int k = 0; k < 200; ++k) {
-      const PointNE p{q(rng), q(rng)};
+      const mpgc::geom::Vec2 p{q(rng), q(rng)};
       double best = std::numeric_limits<double>::infinity();
       for (const auto& o : pts) best = std::min(best, std::hypot(o.x - p.x, o.y - p.y));
       const double got = map.nearest_distance(p);
@@ -113,7 +113,7 @@ TEST(FixedObstacleMap, SegmentClearanceAndLandEqualBruteForce) {
     // A hole: same feature id as polygon 0, inside it (even-odd).
     if (np > 0) {
       om::Polygon hole = polys[0];
-      PointNE ctr{0, 0};
+      mpgc::geom::Vec2 ctr{0, 0};
       for (auto& v : hole.ring) ctr = {ctr.x + v.x / hole.ring.size(), ctr.y + v.y / hole.ring.size()};
       for (auto& v : hole.ring) v = {ctr.x + 0.2 * (v.x - ctr.x), ctr.y + 0.2 * (v.y - ctr.y)};
       polys.push_back(hole);
@@ -121,9 +121,9 @@ TEST(FixedObstacleMap, SegmentClearanceAndLandEqualBruteForce) {
     om::FixedObstacleMap map(pts, polys);
     std::uniform_real_distribution<double> q(-2500.0, 2500.0), len(0.0, 800.0), ang(-M_PI, M_PI);
     for (int k = 0; k < 300; ++k) {
-      const PointNE a{q(rng), q(rng)};
+      const mpgc::geom::Vec2 a{q(rng), q(rng)};
       const double l = (k % 10 == 0) ? 0.0 : len(rng), th = ang(rng);
-      const PointNE b{a.x + l * std::cos(th), a.y + l * std::sin(th)};
+      const mpgc::geom::Vec2 b{a.x + l * std::cos(th), a.y + l * std::sin(th)};
       ASSERT_EQ(map.inside_land(a), brute_inside(polys, a)) << "seed " << seed << " query " << k;
       // Same per-primitive function and the min of it: equal bit for bit.
       const double bf = brute_segment_clearance(pts, polys, a, b);

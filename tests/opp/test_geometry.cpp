@@ -109,7 +109,7 @@ TEST(ChartObstacles, AgreesWithPointSetAndBlocksLand) {
   namespace om = mpgc::obstacle_manager;
   std::mt19937_64 g(9);
   std::vector<opp::Vec2> pts;
-  std::vector<om::PointNE> opts;
+  std::vector<mpgc::geom::Vec2> opts;
   for (int i = 0; i < 500; ++i) {
     pts.push_back({u(g) * 1000, u(g) * 1000});
     opts.push_back({pts.back().x, pts.back().y});

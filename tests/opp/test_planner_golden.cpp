@@ -122,7 +122,7 @@ std::vector<std::string> run_all() {
       opp::Scenario sc = opp::paper_scenario(1);
       std::vector<om::Polygon> land = {{1, {{3000, 2000}, {5000, 2500}, {4500, 5000}, {2500, 4000}}},
                                        {2, {{6500, 7500}, {8000, 6000}, {8200, 8200}}}};
-      std::vector<om::PointNE> pts = {{5500, 5200}, {6000, 4000}, {2000, 6000}};
+      std::vector<mpgc::geom::Vec2> pts = {{5500, 5200}, {6000, 4000}, {2000, 6000}};
       const auto chart = std::make_shared<opp::ChartObstacles>(std::make_shared<const om::FixedObstacleMap>(pts, land));
       sc.problem.fixed = chart.get();
       sc.params.seed = seed;

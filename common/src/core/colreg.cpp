@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "mpgc/geom/vec2.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 namespace mpgc::colreg {
@@ -16,7 +18,7 @@ Cpa cpa(const ShipKinematics& own, const ShipKinematics& target) {
   const double w2 = du * du + dv * dv;
   // No relative motion: the distance never changes; "now" is as close as it gets.
   if (!(w2 > 1e-12)) return {range, 0.0, range};
-  const double t = -(dx * du + dy * dv) / w2;  // eq. 14
+  const double t = geom::cpa_time({dx, dy}, {du, dv});  // eq. 14
   return {std::hypot(dx + du * t, dy + dv * t), t, range};  // eq. 13 at t
 }
 

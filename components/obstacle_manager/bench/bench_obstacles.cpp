@@ -21,7 +21,7 @@
 #include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
 
 namespace om = mpgc::obstacle_manager;
-using om::PointNE;
+using mpgc::geom::Vec2;
 
 namespace {
 
@@ -30,7 +30,7 @@ double now_s() {
 }
 
 struct Cloud {
-  const std::vector<PointNE>* pts;
+  const std::vector<mpgc::geom::Vec2>* pts;
   size_t kdtree_get_point_count() const { return pts->size(); }
   double kdtree_get_pt(size_t i, size_t d) const { return d == 0 ? (*pts)[i].x : (*pts)[i].y; }
   template <class B>
@@ -40,7 +40,7 @@ struct Cloud {
 };
 using Kd = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 2, size_t>;
 
-double brute_nearest(const std::vector<PointNE>& pts, PointNE q) {
+double brute_nearest(const std::vector<mpgc::geom::Vec2>& pts, mpgc::geom::Vec2 q) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& p : pts) {
     const double dx = p.x - q.x, dy = p.y - q.y;
@@ -48,7 +48,7 @@ double brute_nearest(const std::vector<PointNE>& pts, PointNE q) {
   }
   return std::sqrt(best);
 }
-size_t brute_radius(const std::vector<PointNE>& pts, PointNE q, double r) {
+size_t brute_radius(const std::vector<mpgc::geom::Vec2>& pts, mpgc::geom::Vec2 q, double r) {
   size_t n = 0;
   for (const auto& p : pts) {
     const double dx = p.x - q.x, dy = p.y - q.y;
@@ -65,7 +65,7 @@ void bench_points(std::mt19937_64& rng) {
               "[us/query]", "[us/query]", "");
   std::uniform_real_distribution<double> u(-10000.0, 10000.0);
   for (size_t n : {size_t{1000}, size_t{100000}, size_t{1000000}}) {
-    std::vector<PointNE> pts(n);
+    std::vector<mpgc::geom::Vec2> pts(n);
     for (auto& p : pts) p = {u(rng), u(rng)};
     double t0 = now_s();
     Cloud cloud{&pts};
@@ -76,7 +76,7 @@ void bench_points(std::mt19937_64& rng) {
     const double build_map = now_s() - t0;
 
     const int nq = 100000, nq_bf = static_cast<int>(std::max<size_t>(50, 200000000 / n / 20));
-    std::vector<PointNE> qs(nq);
+    std::vector<mpgc::geom::Vec2> qs(nq);
     for (auto& q : qs) q = {u(rng), u(rng)};
     double sink = 0;
     t0 = now_s();
@@ -105,7 +105,7 @@ void bench_points(std::mt19937_64& rng) {
 
 // FCL: every edge becomes a vertical wall (2 triangles, z in [-1, 1]); the query segment too. The
 // distance between two such walls is the 2-D segment distance.
-void add_wall(std::vector<fcl::Vector3d>& v, std::vector<fcl::Triangle>& t, PointNE a, PointNE b) {
+void add_wall(std::vector<fcl::Vector3d>& v, std::vector<fcl::Triangle>& t, mpgc::geom::Vec2 a, mpgc::geom::Vec2 b) {
   const auto k = v.size();
   v.emplace_back(a.x, a.y, -1.0);
   v.emplace_back(b.x, b.y, -1.0);
@@ -115,7 +115,7 @@ void add_wall(std::vector<fcl::Vector3d>& v, std::vector<fcl::Triangle>& t, Poin
   t.emplace_back(k, k + 2, k + 3);
 }
 
-std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> wall_model(const std::vector<std::pair<PointNE, PointNE>>& segs) {
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> wall_model(const std::vector<std::pair<mpgc::geom::Vec2, mpgc::geom::Vec2>>& segs) {
   std::vector<fcl::Vector3d> v;
   std::vector<fcl::Triangle> t;
   for (const auto& s : segs) add_wall(v, t, s.first, s.second);
@@ -153,7 +153,7 @@ void bench_chart(std::mt19937_64& rng, const std::string& chart) {
   t0 = now_s();
   om::FixedObstacleMap edges_only({}, part.polygons);
   const double t_own_build = now_s() - t0;
-  std::vector<std::pair<PointNE, PointNE>> segs;
+  std::vector<std::pair<mpgc::geom::Vec2, mpgc::geom::Vec2>> segs;
   for (const auto& g : part.polygons)
     for (size_t i = 0; i < g.ring.size(); ++i) segs.push_back({g.ring[i], g.ring[(i + 1) % g.ring.size()]});
   t0 = now_s();
@@ -164,15 +164,15 @@ void bench_chart(std::mt19937_64& rng, const std::string& chart) {
   std::uniform_real_distribution<double> ux(sub.min_x, sub.max_x), uy(sub.min_y, sub.max_y), ang(-M_PI, M_PI);
   std::uniform_real_distribution<double> len(50.0, 2000.0);
   const int nq = 20000, nq_bf = 200, nq_fcl = 2000;
-  std::vector<std::pair<PointNE, PointNE>> qs(nq);
+  std::vector<std::pair<mpgc::geom::Vec2, mpgc::geom::Vec2>> qs(nq);
   for (auto& q : qs) {
-    const PointNE a{ux(rng), uy(rng)};
+    const mpgc::geom::Vec2 a{ux(rng), uy(rng)};
     const double l = len(rng), th = ang(rng);
     q = {a, {a.x + l * std::cos(th), a.y + l * std::sin(th)}};
   }
-  auto brute_edges = [&](PointNE a, PointNE c) {
+  auto brute_edges = [&](mpgc::geom::Vec2 a, mpgc::geom::Vec2 c) {
     double best = std::numeric_limits<double>::infinity();
-    for (const auto& s : segs) best = std::min(best, om::segment_distance(a, c, s.first, s.second));
+    for (const auto& s : segs) best = std::min(best, mpgc::geom::segment_distance(a, c, s.first, s.second));
     return best;
   };
   // Own tree, edges only (the inside test adds 0 for legs starting on land; compare raw distance).

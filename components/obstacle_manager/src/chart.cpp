@@ -52,13 +52,13 @@ struct DatasetCloser {
   void operator()(GDALDataset* d) const { GDALClose(d); }
 };
 
-bool simple_ring(const std::vector<PointNE>& r) {
+bool simple_ring(const std::vector<geom::Vec2>& r) {
   // O(n^2) check for the small inline rings of scenarios: non-adjacent edges must not meet.
   const size_t n = r.size();
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
       if (j == i + 1 || (i == 0 && j == n - 1)) continue;
-      if (segment_distance(r[i], r[(i + 1) % n], r[j], r[(j + 1) % n]) == 0.0) return false;
+      if (geom::segment_distance(r[i], r[(i + 1) % n], r[j], r[(j + 1) % n]) == 0.0) return false;
     }
   return true;
 }
@@ -66,7 +66,7 @@ bool simple_ring(const std::vector<PointNE>& r) {
 // The number of points densify_line makes of `line`, in double: finite for any finite input, so
 // it can be checked against max_points before anything is allocated (a 4e9 m line at 20 m is 2e8
 // points; an infinite length would be an undefined cast to size_t).
-double densified_points(const std::vector<PointNE>& line, double spacing) {
+double densified_points(const std::vector<geom::Vec2>& line, double spacing) {
   double n = line.empty() ? 0.0 : 1.0;
   for (size_t i = 0; i + 1 < line.size(); ++i)
     n += std::max(1.0, std::ceil(std::hypot(line[i + 1].x - line[i].x, line[i + 1].y - line[i].y) / spacing));
@@ -89,10 +89,10 @@ void ChartParams::validate() const {
   if (max_points == 0) throw std::invalid_argument("ChartParams.max_points must be > 0");
 }
 
-std::vector<PointNE> densify_line(const std::vector<PointNE>& line, double spacing) {
-  std::vector<PointNE> out;
+std::vector<geom::Vec2> densify_line(const std::vector<geom::Vec2>& line, double spacing) {
+  std::vector<geom::Vec2> out;
   for (size_t i = 0; i + 1 < line.size(); ++i) {
-    const PointNE a = line[i], b = line[i + 1];
+    const geom::Vec2 a = line[i], b = line[i + 1];
     const double len = std::hypot(b.x - a.x, b.y - a.y);
     const auto n = static_cast<size_t>(std::max(1.0, std::ceil(len / spacing)));
     for (size_t k = 0; k < n; ++k) {
@@ -104,9 +104,9 @@ std::vector<PointNE> densify_line(const std::vector<PointNE>& line, double spaci
   return out;
 }
 
-std::vector<PointNE> densify_ring(const std::vector<PointNE>& ring, double spacing) {
+std::vector<geom::Vec2> densify_ring(const std::vector<geom::Vec2>& ring, double spacing) {
   if (ring.empty()) return {};
-  std::vector<PointNE> closed = ring;
+  std::vector<geom::Vec2> closed = ring;
   closed.push_back(ring.front());
   auto out = densify_line(closed, spacing);
   out.pop_back();  // the closing point repeats the first
@@ -143,9 +143,9 @@ void ChartBuilder::check_size(const std::string& name) const {
                      " points (raise spacing)");
 }
 
-void ChartBuilder::add_ring(std::vector<PointNE> ring, uint32_t id) {
+void ChartBuilder::add_ring(std::vector<geom::Vec2> ring, uint32_t id) {
   if (!ring.empty()) {
-    std::vector<PointNE> closed = ring;
+    std::vector<geom::Vec2> closed = ring;
     closed.push_back(ring.front());
     check_room(set_.points.size(), densified_points(closed, p_.spacing) - 1.0, p_.max_points, set_.features[id]);
   }
@@ -154,7 +154,7 @@ void ChartBuilder::add_ring(std::vector<PointNE> ring, uint32_t id) {
   set_.polygons.push_back({id, std::move(ring)});
 }
 
-void ChartBuilder::add_polygon(const std::vector<PointNE>& ring, const std::string& name) {
+void ChartBuilder::add_polygon(const std::vector<geom::Vec2>& ring, const std::string& name) {
   if (ring.size() < 3) throw ChartError(name + ": polygon has " + std::to_string(ring.size()) + " points, needs >= 3");
   for (const auto& v : ring)
     if (!std::isfinite(v.x) || !std::isfinite(v.y)) throw ChartError(name + ": polygon vertex is not finite");
@@ -164,14 +164,14 @@ void ChartBuilder::add_polygon(const std::vector<PointNE>& ring, const std::stri
   check_size(name);
 }
 
-void ChartBuilder::add_circle(PointNE c, double radius, const std::string& name) {
+void ChartBuilder::add_circle(geom::Vec2 c, double radius, const std::string& name) {
   if (!std::isfinite(c.x) || !std::isfinite(c.y) || !(radius > 0.0) || !std::isfinite(radius))
     throw ChartError(name + ": circle needs a finite centre and a radius > 0 (got " + std::to_string(radius) + " m)");
   // Circumscribed regular polygon: vertices at r / cos(pi / n) so the whole circle is inside.
   check_room(set_.points.size(), std::ceil(2.0 * M_PI * radius / p_.spacing), p_.max_points, name);
   const int n = std::max(8, static_cast<int>(std::ceil(2.0 * M_PI * radius / p_.spacing)));
   const double rv = radius / std::cos(M_PI / n);
-  std::vector<PointNE> ring;
+  std::vector<geom::Vec2> ring;
   for (int i = 0; i < n; ++i) {
     const double a = 2.0 * M_PI * i / n;
     ring.push_back({c.x + rv * std::cos(a), c.y + rv * std::sin(a)});
@@ -181,7 +181,7 @@ void ChartBuilder::add_circle(PointNE c, double radius, const std::string& name)
   check_size(name);
 }
 
-void ChartBuilder::add_line(const std::vector<PointNE>& line, const std::string& name) {
+void ChartBuilder::add_line(const std::vector<geom::Vec2>& line, const std::string& name) {
   if (line.size() < 2) throw ChartError(name + ": line has " + std::to_string(line.size()) + " points, needs >= 2");
   for (const auto& v : line)
     if (!std::isfinite(v.x) || !std::isfinite(v.y)) throw ChartError(name + ": line vertex is not finite");
@@ -189,14 +189,14 @@ void ChartBuilder::add_line(const std::vector<PointNE>& line, const std::string&
   auto pts = densify_line(line, p_.spacing);
   set_.points.insert(set_.points.end(), pts.begin(), pts.end());
   // There and back: a -> ... -> z -> ... -> (a): every edge twice, so even-odd never says inside.
-  std::vector<PointNE> ring = line;
+  std::vector<geom::Vec2> ring = line;
   for (size_t i = line.size() - 1; i-- > 1;) ring.push_back(line[i]);
   if (ring.size() == 2) ring.push_back(line[1]);  // a two-point line: a, b, b
   set_.polygons.push_back({new_feature(name), std::move(ring)});
   check_size(name);
 }
 
-void ChartBuilder::add_point(PointNE p, const std::string& name) {
+void ChartBuilder::add_point(geom::Vec2 p, const std::string& name) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw ChartError(name + ": point is not finite");
   set_.points.push_back(p);
   new_feature(name);
@@ -207,7 +207,7 @@ struct OgrReader {
   ChartBuilder& b;
   CplCapture& cpl;
 
-  PointNE to_ned(double lon_deg, double lat_deg, const std::string& name) const {
+  geom::Vec2 to_ned(double lon_deg, double lat_deg, const std::string& name) const {
     if (!std::isfinite(lon_deg) || !std::isfinite(lat_deg) || std::abs(lat_deg) > 90.0 || std::abs(lon_deg) > 180.0)
       throw ChartError(name + ": coordinate out of range (lon " + std::to_string(lon_deg) + ", lat " +
                        std::to_string(lat_deg) + " deg)");
@@ -215,8 +215,8 @@ struct OgrReader {
     return {ne.x, ne.y};
   }
 
-  std::vector<PointNE> line_points(const OGRSimpleCurve& c, const std::string& name) const {
-    std::vector<PointNE> v;
+  std::vector<geom::Vec2> line_points(const OGRSimpleCurve& c, const std::string& name) const {
+    std::vector<geom::Vec2> v;
     v.reserve(static_cast<size_t>(c.getNumPoints()));
     for (int i = 0; i < c.getNumPoints(); ++i) v.push_back(to_ned(c.getX(i), c.getY(i), name));
     return v;
@@ -224,7 +224,7 @@ struct OgrReader {
 
   void polygon(const OGRPolygon& poly, uint32_t id, const std::string& name) {
     if (poly.IsEmpty()) throw ChartError(name + ": empty polygon");
-    std::vector<std::vector<PointNE>> rings;
+    std::vector<std::vector<geom::Vec2>> rings;
     for (int k = 0; k < poly.getNumInteriorRings() + 1; ++k) {
       const OGRLinearRing* r = k == 0 ? poly.getExteriorRing() : poly.getInteriorRing(k - 1);
       const std::string rn = name + (k == 0 ? " outer ring" : " inner ring " + std::to_string(k - 1));
@@ -249,7 +249,7 @@ struct OgrReader {
     check_room(b.set_.points.size(), densified_points(v, b.p_.spacing), b.p_.max_points, name);
     auto pts = densify_line(v, b.p_.spacing);
     b.set_.points.insert(b.set_.points.end(), pts.begin(), pts.end());
-    std::vector<PointNE> ring = v;
+    std::vector<geom::Vec2> ring = v;
     for (size_t i = v.size() - 1; i-- > 1;) ring.push_back(v[i]);
     if (ring.size() == 2) ring.push_back(v[1]);
     b.set_.polygons.push_back({id, std::move(ring)});

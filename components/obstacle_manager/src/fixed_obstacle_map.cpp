@@ -15,7 +15,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct PointCloud {
-  const std::vector<PointNE>* pts;
+  const std::vector<geom::Vec2>* pts;
   size_t kdtree_get_point_count() const { return pts->size(); }
   double kdtree_get_pt(size_t i, size_t dim) const { return dim == 0 ? (*pts)[i].x : (*pts)[i].y; }
   template <class Box>
@@ -39,20 +39,20 @@ struct InclusiveRadius {
   double worstDist() const { return std::nextafter(r2, kInf); }
 };
 
-void check_query(PointNE p, const char* what) {
+void check_query(geom::Vec2 p, const char* what) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y))
     throw std::invalid_argument(std::string(what) + ": query point is not finite (" + std::to_string(p.x) + ", " +
                                 std::to_string(p.y) + ")");
 }
 
-void check_point(PointNE p, const std::string& what) {
+void check_point(geom::Vec2 p, const std::string& what) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y))
     throw std::invalid_argument(what + " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")");
 }
 }  // namespace
 
 struct FixedObstacleMap::Impl {
-  std::vector<PointNE> points;
+  std::vector<geom::Vec2> points;
   std::vector<Polygon> polygons;
   PointCloud cloud{&points};
   KdTree kd;  // over `points` (leaf size 10)
@@ -60,13 +60,13 @@ struct FixedObstacleMap::Impl {
   detail::SegmentTree edges;             // ray crossings: polygon edges only
   BoxNE box{0, 0, 0, 0};
 
-  Impl(std::vector<PointNE> p, std::vector<Polygon> g)
+  Impl(std::vector<geom::Vec2> p, std::vector<Polygon> g)
       : points(std::move(p)), polygons(std::move(g)), cloud{&points}, kd(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
 };
 
 FixedObstacleMap::FixedObstacleMap() : FixedObstacleMap({}, {}) {}
 
-FixedObstacleMap::FixedObstacleMap(std::vector<PointNE> points, std::vector<Polygon> polygons) {
+FixedObstacleMap::FixedObstacleMap(std::vector<geom::Vec2> points, std::vector<Polygon> polygons) {
   for (size_t i = 0; i < points.size(); ++i) check_point(points[i], "obstacle point " + std::to_string(i));
   for (size_t k = 0; k < polygons.size(); ++k) {
     const auto& r = polygons[k].ring;
@@ -94,11 +94,11 @@ FixedObstacleMap::~FixedObstacleMap() = default;
 FixedObstacleMap::FixedObstacleMap(FixedObstacleMap&&) noexcept = default;
 FixedObstacleMap& FixedObstacleMap::operator=(FixedObstacleMap&&) noexcept = default;
 
-const std::vector<PointNE>& FixedObstacleMap::points() const { return impl_->points; }
+const std::vector<geom::Vec2>& FixedObstacleMap::points() const { return impl_->points; }
 const std::vector<Polygon>& FixedObstacleMap::polygons() const { return impl_->polygons; }
 BoxNE FixedObstacleMap::bounds() const { return impl_->box; }
 
-size_t FixedObstacleMap::nearest_index(PointNE p) const {
+size_t FixedObstacleMap::nearest_index(geom::Vec2 p) const {
   check_query(p, "nearest_index");
   if (impl_->points.empty()) return std::numeric_limits<size_t>::max();
   size_t idx = 0;
@@ -110,7 +110,7 @@ size_t FixedObstacleMap::nearest_index(PointNE p) const {
   return idx;
 }
 
-double FixedObstacleMap::nearest_distance(PointNE p) const {
+double FixedObstacleMap::nearest_distance(geom::Vec2 p) const {
   check_query(p, "nearest_distance");
   if (impl_->points.empty()) return kInf;
   size_t idx = 0;
@@ -122,7 +122,7 @@ double FixedObstacleMap::nearest_distance(PointNE p) const {
   return std::sqrt(d2);
 }
 
-std::vector<size_t> FixedObstacleMap::radius(PointNE p, double r) const {
+std::vector<size_t> FixedObstacleMap::radius(geom::Vec2 p, double r) const {
   check_query(p, "radius");
   if (!(r >= 0.0) || !std::isfinite(r))
     throw std::invalid_argument("radius: r = " + std::to_string(r) + " must be finite and >= 0");
@@ -139,14 +139,14 @@ std::vector<size_t> FixedObstacleMap::radius(PointNE p, double r) const {
   return out;
 }
 
-bool FixedObstacleMap::inside_land(PointNE p) const {
+bool FixedObstacleMap::inside_land(geom::Vec2 p) const {
   check_query(p, "inside_land");
   return impl_->edges.odd_crossings(p);
 }
 
-double FixedObstacleMap::clearance(PointNE p) const { return segment_clearance(p, p); }
+double FixedObstacleMap::clearance(geom::Vec2 p) const { return segment_clearance(p, p); }
 
-double FixedObstacleMap::segment_clearance(PointNE a, PointNE b) const {
+double FixedObstacleMap::segment_clearance(geom::Vec2 a, geom::Vec2 b) const {
   check_query(a, "segment_clearance");
   check_query(b, "segment_clearance");
   // Without an edge crossing, the whole segment is on the side of `a`; so one inside test suffices.
@@ -158,7 +158,7 @@ double FixedObstacleMap::segment_clearance(PointNE a, PointNE b) const {
 
 namespace mpgc::obstacle_manager {
 
-bool FixedObstacleMap::segment_clear(PointNE a, PointNE b, double d) const {
+bool FixedObstacleMap::segment_clear(geom::Vec2 a, geom::Vec2 b, double d) const {
   check_query(a, "segment_clear");
   check_query(b, "segment_clear");
   if (std::isnan(d)) throw std::invalid_argument("segment_clear: distance is NaN");

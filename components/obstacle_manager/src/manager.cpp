@@ -41,7 +41,7 @@ void add_shapes(ChartBuilder& b, const std::string& spec) {
         throw ChartError(name + ": '" + tok + "' is not a number");
       }
     }
-    std::vector<PointNE> pts;
+    std::vector<geom::Vec2> pts;
     for (size_t i = 0; i + 1 < v.size(); i += 2) pts.push_back({v[i], v[i + 1]});
     if (kind == "circle") {
       if (v.size() != 3) throw ChartError(name + ": needs 'circle N E R', got " + std::to_string(v.size()) + " numbers");
@@ -71,13 +71,13 @@ void RegionParams::validate() const {
 
 RegionPolicy::RegionPolicy(RegionParams p) : p_(p) { p_.validate(); }
 
-bool RegionPolicy::needs_update(PointNE own) const {
+bool RegionPolicy::needs_update(geom::Vec2 own) const {
   if (dirty_ || !centre_) return true;
   if (whole_chart()) return false;
   return std::hypot(own.x - centre_->x, own.y - centre_->y) > p_.republish_distance;
 }
 
-BoxNE RegionPolicy::publish(PointNE own, const BoxNE& chart_bounds) {
+BoxNE RegionPolicy::publish(geom::Vec2 own, const BoxNE& chart_bounds) {
   centre_ = own;
   dirty_ = false;
   if (whole_chart()) return chart_bounds;

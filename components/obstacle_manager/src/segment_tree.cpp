@@ -6,47 +6,17 @@
 
 namespace mpgc::obstacle_manager {
 
-namespace {
-double cross(PointNE o, PointNE a, PointNE b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
-int sign(double v) { return (v > 0) - (v < 0); }
-bool on_segment(PointNE p, PointNE a, PointNE b) {  // p collinear with [a, b]: within its box?
-  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
-         p.y <= std::max(a.y, b.y);
-}
-}  // namespace
-
-double point_segment_distance(PointNE p, PointNE a, PointNE b) {
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  const double len2 = dx * dx + dy * dy;
-  double t = 0.0;
-  if (len2 > 0.0) t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0);
-  const double ex = a.x + t * dx - p.x, ey = a.y + t * dy - p.y;
-  return std::sqrt(ex * ex + ey * ey);
-}
-
-double segment_distance(PointNE a, PointNE b, PointNE c, PointNE d) {
-  // Intersection by orientation signs (including touching and collinear overlap) -> 0.
-  const int o1 = sign(cross(a, b, c)), o2 = sign(cross(a, b, d));
-  const int o3 = sign(cross(c, d, a)), o4 = sign(cross(c, d, b));
-  if (o1 * o2 < 0 && o3 * o4 < 0) return 0.0;
-  if ((o1 == 0 && on_segment(c, a, b)) || (o2 == 0 && on_segment(d, a, b)) || (o3 == 0 && on_segment(a, c, d)) ||
-      (o4 == 0 && on_segment(b, c, d)))
-    return 0.0;
-  // Disjoint segments: the minimum is attained at an endpoint of one of them.
-  return std::min(std::min(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
-                  std::min(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
-}
 
 namespace detail {
 
 namespace {
-double point_box_distance(PointNE p, const BoxNE& b) {
+double point_box_distance(geom::Vec2 p, const BoxNE& b) {
   const double dx = std::max({b.min_x - p.x, 0.0, p.x - b.max_x});
   const double dy = std::max({b.min_y - p.y, 0.0, p.y - b.max_y});
   return std::sqrt(dx * dx + dy * dy);
 }
 // Liang-Barsky: does [a, b] meet the closed box?
-bool segment_hits_box(PointNE a, PointNE b, const BoxNE& box) {
+bool segment_hits_box(geom::Vec2 a, geom::Vec2 b, const BoxNE& box) {
   double t0 = 0.0, t1 = 1.0;
   const double d[2] = {b.x - a.x, b.y - a.y};
   const double lo[2] = {box.min_x - a.x, box.min_y - a.y};
@@ -67,14 +37,14 @@ bool segment_hits_box(PointNE a, PointNE b, const BoxNE& box) {
 constexpr uint32_t kLeafSize = 4;
 }  // namespace
 
-double segment_box_distance(PointNE a, PointNE b, const BoxNE& box) {
+double segment_box_distance(geom::Vec2 a, geom::Vec2 b, const BoxNE& box) {
   if (segment_hits_box(a, b, box)) return 0.0;
   // Two disjoint convex sets in the plane: the minimum is between a vertex of one and the other.
   double d = std::min(point_box_distance(a, box), point_box_distance(b, box));
-  d = std::min(d, point_segment_distance({box.min_x, box.min_y}, a, b));
-  d = std::min(d, point_segment_distance({box.min_x, box.max_y}, a, b));
-  d = std::min(d, point_segment_distance({box.max_x, box.min_y}, a, b));
-  d = std::min(d, point_segment_distance({box.max_x, box.max_y}, a, b));
+  d = std::min(d, geom::point_segment_distance({box.min_x, box.min_y}, a, b));
+  d = std::min(d, geom::point_segment_distance({box.min_x, box.max_y}, a, b));
+  d = std::min(d, geom::point_segment_distance({box.max_x, box.min_y}, a, b));
+  d = std::min(d, geom::point_segment_distance({box.max_x, box.max_y}, a, b));
   return d;
 }
 
@@ -131,7 +101,7 @@ uint32_t SegmentTree::build(uint32_t first, uint32_t count, std::vector<Node>& o
   return 0;
 }
 
-double SegmentTree::min_distance(PointNE q0, PointNE q1) const {
+double SegmentTree::min_distance(geom::Vec2 q0, geom::Vec2 q1) const {
   double best = std::numeric_limits<double>::infinity();
   if (nodes_.empty()) return best;
   struct Item {
@@ -147,7 +117,7 @@ double SegmentTree::min_distance(PointNE q0, PointNE q1) const {
     const Node& n = nodes_[it.node];
     if (n.count > 0) {
       for (uint32_t i = n.first; i < n.first + n.count; ++i)
-        best = std::min(best, segment_distance(q0, q1, segs_[i].a, segs_[i].b));
+        best = std::min(best, geom::segment_distance(q0, q1, segs_[i].a, segs_[i].b));
       if (best == 0.0) break;
       continue;
     }
@@ -165,7 +135,7 @@ double SegmentTree::min_distance(PointNE q0, PointNE q1) const {
   return best;
 }
 
-bool SegmentTree::any_within(PointNE q0, PointNE q1, double d) const {
+bool SegmentTree::any_within(geom::Vec2 q0, geom::Vec2 q1, double d) const {
   if (nodes_.empty()) return false;
   uint32_t stack[128];
   int top = 0;
@@ -179,12 +149,12 @@ bool SegmentTree::any_within(PointNE q0, PointNE q1, double d) const {
       continue;
     }
     for (uint32_t i = n.first; i < n.first + n.count; ++i)
-      if (segment_distance(q0, q1, segs_[i].a, segs_[i].b) < d) return true;
+      if (geom::segment_distance(q0, q1, segs_[i].a, segs_[i].b) < d) return true;
   }
   return false;
 }
 
-bool SegmentTree::odd_crossings(PointNE p) const {
+bool SegmentTree::odd_crossings(geom::Vec2 p) const {
   if (nodes_.empty()) return false;
   // Cast the ray towards the nearest side of the root box: fewer nodes to visit. Parity is the
   // same for every direction (points exactly on a boundary aside). In (u, v) the ray is +v.
@@ -194,7 +164,7 @@ bool SegmentTree::odd_crossings(PointNE p) const {
   for (int k = 1; k < 4; ++k)
     if (reach[k] < reach[dir]) dir = k;
   if (reach[dir] < 0.0) return false;  // outside the box of every edge
-  auto uv = [dir](PointNE q) -> std::pair<double, double> {
+  auto uv = [dir](geom::Vec2 q) -> std::pair<double, double> {
     switch (dir) {
       case 0: return {q.x, q.y};    // east
       case 1: return {q.x, -q.y};   // west

@@ -11,13 +11,13 @@
 namespace mpgc::obstacle_manager::detail {
 
 struct Segment {
-  PointNE a, b;
+  geom::Vec2 a, b;
   uint32_t group;  // even-odd group (polygon feature) or kNoGroup for points
 };
 inline constexpr uint32_t kNoGroup = std::numeric_limits<uint32_t>::max();
 
 // Exact distance from the segment [a, b] to the box (0 when they intersect).
-double segment_box_distance(PointNE a, PointNE b, const BoxNE& box);
+double segment_box_distance(geom::Vec2 a, geom::Vec2 b, const BoxNE& box);
 
 class SegmentTree {
  public:
@@ -26,11 +26,11 @@ class SegmentTree {
   size_t size() const { return segs_.size(); }
   // min over segments of segment_distance(q0, q1, s); +inf when empty. Exact: the same
   // per-segment function as a brute-force loop, with branch and bound on exact box distances.
-  double min_distance(PointNE q0, PointNE q1) const;
+  double min_distance(geom::Vec2 q0, geom::Vec2 q1) const;
   // True when some segment is closer than d to [q0, q1] (same per-segment function).
-  bool any_within(PointNE q0, PointNE q1, double d) const;
+  bool any_within(geom::Vec2 q0, geom::Vec2 q1, double d) const;
   // Groups with an odd number of edges crossing the ray from p towards +y (east).
-  bool odd_crossings(PointNE p) const;
+  bool odd_crossings(geom::Vec2 p) const;
   BoxNE bounds() const;
 
  private:

@@ -5,6 +5,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "mpgc/geom/vec2.hpp"
+
 namespace mpgc::geo {
 
 struct LatLon {
@@ -12,10 +14,7 @@ struct LatLon {
   double lon;  // [rad]
 };
 
-struct NorthEast {
-  double x;  // [m] north
-  double y;  // [m] east
-};
+using NorthEast = geom::Vec2;  // [m] x north, y east
 
 // Throws std::invalid_argument naming the value when lat/lon is not finite or out of range.
 void check_latlon(double lat_rad, double lon_rad);

@@ -41,7 +41,7 @@ struct ChartParams {
 
 // Fixed obstacles in NED. Polygon feature ids index `features`.
 struct ObstacleSet {
-  std::vector<PointNE> points;       // [m] densified boundaries and point features
+  std::vector<geom::Vec2> points;       // [m] densified boundaries and point features
   std::vector<Polygon> polygons;     // [m] areas (holes share the feature id, even-odd)
   std::vector<std::string> features; // feature_id -> "source:layer:fid" for messages
   std::map<std::string, size_t> layer_counts;  // features taken per layer, e.g. "LNDARE" -> 183
@@ -49,9 +49,9 @@ struct ObstacleSet {
 };
 
 // Points every `spacing` metres along the closed ring (vertices included, closing edge included).
-std::vector<PointNE> densify_ring(const std::vector<PointNE>& ring, double spacing);
+std::vector<geom::Vec2> densify_ring(const std::vector<geom::Vec2>& ring, double spacing);
 // Points every `spacing` metres along the open polyline (both ends included).
-std::vector<PointNE> densify_line(const std::vector<PointNE>& line, double spacing);
+std::vector<geom::Vec2> densify_line(const std::vector<geom::Vec2>& line, double spacing);
 
 // The fixed obstacles of `set` a planner needs inside `region`: the points inside it and every
 // polygon whose bounding box meets it (kept whole so inside tests stay exact near the border).
@@ -68,13 +68,13 @@ class ChartBuilder {
 
   // Inline scenario shapes, already in NED [m]. `name` names the shape in errors.
   // A ring must be simple (no self-intersection); first point not repeated.
-  void add_polygon(const std::vector<PointNE>& ring, const std::string& name);
+  void add_polygon(const std::vector<geom::Vec2>& ring, const std::string& name);
   // A circle as a circumscribed polygon (every point of the circle is inside it).
-  void add_circle(PointNE centre, double radius, const std::string& name);
+  void add_circle(geom::Vec2 centre, double radius, const std::string& name);
   // An open line (canal wall, breakwater): a zero-area there-and-back ring, so it has edges for
   // clearance but never an inside.
-  void add_line(const std::vector<PointNE>& line, const std::string& name);
-  void add_point(PointNE p, const std::string& name);
+  void add_line(const std::vector<geom::Vec2>& line, const std::string& name);
+  void add_point(geom::Vec2 p, const std::string& name);
 
   const ObstacleSet& result() const { return set_; }
   ObstacleSet take() { return std::move(set_); }
@@ -82,7 +82,7 @@ class ChartBuilder {
 
  private:
   uint32_t new_feature(const std::string& name);
-  void add_ring(std::vector<PointNE> ring, uint32_t id);
+  void add_ring(std::vector<geom::Vec2> ring, uint32_t id);
   void check_size(const std::string& name) const;
   geo::LocalNed frame_;
   ChartParams p_;

@@ -25,30 +25,23 @@
 #include <stdexcept>
 #include <vector>
 
-#include "mpgc/geo/geodesy.hpp"
+#include "mpgc/geom/vec2.hpp"
 
 namespace mpgc::obstacle_manager {
 
-using PointNE = mpgc::geo::NorthEast;  // [m] x north, y east
-
 struct Polygon {
   uint32_t feature_id = 0;     // [-] chart feature; rings with one id combine even-odd
-  std::vector<PointNE> ring;   // [m] closed ring, first point not repeated, >= 3 points
+  std::vector<geom::Vec2> ring;   // [m] closed ring, first point not repeated, >= 3 points
 };
 
 // Axis-aligned box in NED.
 struct BoxNE {
   double min_x, min_y, max_x, max_y;  // [m]
-  bool contains(PointNE p) const { return p.x >= min_x && p.x <= max_x && p.y >= min_y && p.y <= max_y; }
+  bool contains(geom::Vec2 p) const { return p.x >= min_x && p.x <= max_x && p.y >= min_y && p.y <= max_y; }
   bool intersects(const BoxNE& o) const {
     return !(o.min_x > max_x || o.max_x < min_x || o.min_y > max_y || o.max_y < min_y);
   }
 };
-
-// Exact Euclidean distance between segments [a, b] and [c, d] (0 when they intersect).
-double segment_distance(PointNE a, PointNE b, PointNE c, PointNE d);
-// Exact distance from point p to segment [a, b].
-double point_segment_distance(PointNE p, PointNE a, PointNE b);
 
 class FixedObstacleMap {
  public:
@@ -56,35 +49,35 @@ class FixedObstacleMap {
   FixedObstacleMap();
   // Throws std::invalid_argument naming the offending point/ring when a coordinate is not finite
   // or a ring has fewer than 3 points.
-  FixedObstacleMap(std::vector<PointNE> points, std::vector<Polygon> polygons);
+  FixedObstacleMap(std::vector<geom::Vec2> points, std::vector<Polygon> polygons);
   ~FixedObstacleMap();
   FixedObstacleMap(FixedObstacleMap&&) noexcept;
   FixedObstacleMap& operator=(FixedObstacleMap&&) noexcept;
   FixedObstacleMap(const FixedObstacleMap&) = delete;  // holds index structures; share via shared_ptr
   FixedObstacleMap& operator=(const FixedObstacleMap&) = delete;
 
-  const std::vector<PointNE>& points() const;
+  const std::vector<geom::Vec2>& points() const;
   const std::vector<Polygon>& polygons() const;
   bool empty() const { return points().empty() && polygons().empty(); }
 
   // Distance [m] from p to the nearest obstacle POINT (kd-tree, exact); +inf without points.
-  double nearest_distance(PointNE p) const;
+  double nearest_distance(geom::Vec2 p) const;
   // Index into points() of the nearest point; SIZE_MAX without points.
-  size_t nearest_index(PointNE p) const;
+  size_t nearest_index(geom::Vec2 p) const;
   // Indices of the points within distance r (inclusive) of p, sorted by distance. r >= 0.
-  std::vector<size_t> radius(PointNE p, double r) const;
+  std::vector<size_t> radius(geom::Vec2 p, double r) const;
 
   // True when p is inside a polygon (even-odd per feature, union over features). Points exactly
   // on a boundary may go either way; their clearance() is 0 in any case.
-  bool inside_land(PointNE p) const;
+  bool inside_land(geom::Vec2 p) const;
   // Exact minimum distance [m] from p to any obstacle point or polygon edge; 0 inside land.
-  double clearance(PointNE p) const;
+  double clearance(geom::Vec2 p) const;
   // Exact minimum distance [m] from the segment [a, b] to any obstacle (points and polygon
   // edges); 0 when the segment crosses or touches an edge or lies inside land. +inf when empty.
-  double segment_clearance(PointNE a, PointNE b) const;
+  double segment_clearance(geom::Vec2 a, geom::Vec2 b) const;
   // segment_clearance(a, b) >= d, answered faster: the search stops at the first obstacle closer
   // than d and never explores farther than d (the planner's collision check, seed 000 eq. 4).
-  bool segment_clear(PointNE a, PointNE b, double d) const;
+  bool segment_clear(geom::Vec2 a, geom::Vec2 b, double d) const;
 
   // Bounding box of every point and ring vertex (all zero when empty).
   BoxNE bounds() const;

@@ -33,15 +33,15 @@ class RegionPolicy {
  public:
   explicit RegionPolicy(RegionParams p);
   // True when nothing was published yet, the ship left the republish circle, or the chart changed.
-  bool needs_update(PointNE own) const;
+  bool needs_update(geom::Vec2 own) const;
   void chart_changed() { dirty_ = true; }
   // The region to publish for the ship at `own`, and remember it as published.
-  BoxNE publish(PointNE own, const BoxNE& chart_bounds);
+  BoxNE publish(geom::Vec2 own, const BoxNE& chart_bounds);
   bool whole_chart() const { return p_.half_size == 0.0; }
 
  private:
   RegionParams p_;
-  std::optional<PointNE> centre_;
+  std::optional<geom::Vec2> centre_;
   bool dirty_ = true;
 };
 

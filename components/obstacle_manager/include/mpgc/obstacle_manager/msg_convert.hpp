@@ -13,14 +13,14 @@
 
 namespace mpgc::obstacle_manager {
 
-inline std::vector<PointNE> points_from_msg(const std::vector<msg::PointNE>& v) {
-  std::vector<PointNE> out;
+inline std::vector<geom::Vec2> points_from_msg(const std::vector<msg::PointNE>& v) {
+  std::vector<geom::Vec2> out;
   out.reserve(v.size());
   for (const auto& p : v) out.push_back({p.x, p.y});
   return out;
 }
 
-inline std::vector<msg::PointNE> points_to_msg(const std::vector<PointNE>& v) {
+inline std::vector<msg::PointNE> points_to_msg(const std::vector<geom::Vec2>& v) {
   std::vector<msg::PointNE> out;
   out.reserve(v.size());
   for (const auto& p : v) out.push_back({p.x, p.y});

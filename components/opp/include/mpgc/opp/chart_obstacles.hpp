@@ -13,9 +13,9 @@ class ChartObstacles final : public FixedObstacles {
  public:
   explicit ChartObstacles(std::shared_ptr<const obstacle_manager::FixedObstacleMap> map) : map_(std::move(map)) {}
   // Exact distance to points and polygon edges, 0 inside land.
-  double nearest(Vec2 p) const override { return map_->clearance({p.x, p.y}); }
+  double nearest(Vec2 p) const override { return map_->clearance(p); }
   bool segment_clear(Vec2 a, Vec2 b, double d) const override {
-    const double c = map_->segment_clearance({a.x, a.y}, {b.x, b.y});
+    const double c = map_->segment_clearance(a, b);
     return c >= d && c > 0.0;  // 0 = crosses or touches land, blocked even when d = 0
   }
   const obstacle_manager::FixedObstacleMap& map() const { return *map_; }
