@@ -4,6 +4,7 @@
 #include <random>
 
 #include "mpgc/opp/node_grid.hpp"
+#include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/obstacles.hpp"
 
 namespace opp = mpgc::opp;
@@ -43,11 +44,13 @@ TEST(NodeGrid, NearestAndKNearestMatchBruteForce) {
   }
 }
 
+// The point set F through the obstacle manager's index (point_obstacles), against brute force.
 TEST(PointObstacles, SegmentClearMatchesBruteForce) {
   std::mt19937_64 g(5);
   std::vector<opp::Vec2> pts;
   for (int i = 0; i < 2000; ++i) pts.push_back({u(g) * 1000, u(g) * 1000});
-  opp::PointObstacles obs(pts);
+  const auto obs_ptr = opp::point_obstacles(pts);
+  const opp::FixedObstacles& obs = *obs_ptr;
   for (int q = 0; q < 2000; ++q) {
     const opp::Vec2 a{u(g) * 1000, u(g) * 1000};
     const opp::Vec2 b = a + opp::Vec2{(u(g) - 0.5) * 200, (u(g) - 0.5) * 200};
@@ -71,7 +74,8 @@ TEST(PointObstacles, SegmentClearExactNearDenseClustersAndLargeMargins) {
     const opp::Vec2 ctr{u(g) * 5000, u(g) * 5000};
     for (int i = 0; i < 2000; ++i) pts.push_back(ctr + opp::Vec2{(u(g) - 0.5) * 200, (u(g) - 0.5) * 200});
   }
-  opp::PointObstacles obs(pts);
+  const auto obs_ptr = opp::point_obstacles(pts);
+  const opp::FixedObstacles& obs = *obs_ptr;
   int clear = 0, blocked = 0;
   for (int q = 0; q < 1500; ++q) {
     const opp::Vec2 a{u(g) * 5000, u(g) * 5000};
@@ -89,11 +93,11 @@ TEST(PointObstacles, SegmentClearExactNearDenseClustersAndLargeMargins) {
 }
 
 TEST(Obstacles, RejectNonFiniteInput) {
-  EXPECT_THROW(opp::PointObstacles({{0, 0}, {std::nan(""), 1}}), std::invalid_argument);
+  EXPECT_THROW(opp::point_obstacles({{0, 0}, {std::nan(""), 1}}), std::invalid_argument);
   EXPECT_THROW(opp::DiscObstacles({{{0, 0}, -1}}), std::invalid_argument);
-  opp::PointObstacles empty({});
-  EXPECT_TRUE(std::isinf(empty.nearest({1, 2})));
-  EXPECT_TRUE(empty.segment_clear({0, 0}, {1, 1}, 5));
+  const auto empty = opp::point_obstacles({});
+  EXPECT_TRUE(std::isinf(empty->nearest({1, 2})));
+  EXPECT_TRUE(empty->segment_clear({0, 0}, {1, 1}, 5));
 }
 
 TEST(Geometry, MinDistanceOfLinearMotion) {
@@ -102,8 +106,6 @@ TEST(Geometry, MinDistanceOfLinearMotion) {
   EXPECT_DOUBLE_EQ(mpgc::geom::closest_approach({10, 3}, {-1, 0}, 4).dist2, 36.0 + 9.0);
   EXPECT_DOUBLE_EQ(mpgc::geom::closest_approach({10, 3}, {1, 0}, 4).dist2, 109.0);
 }
-
-#include "mpgc/opp/chart_obstacles.hpp"
 
 TEST(ChartObstacles, AgreesWithPointSetAndBlocksLand) {
   namespace om = mpgc::obstacle_manager;
@@ -117,12 +119,12 @@ TEST(ChartObstacles, AgreesWithPointSetAndBlocksLand) {
   // A square island with no points inside it: only the polygon makes it an obstacle.
   std::vector<om::Polygon> polys{{1, {{2000, 2000}, {2000, 2100}, {2100, 2100}, {2100, 2000}}}};
   opp::ChartObstacles chart(std::make_shared<const om::FixedObstacleMap>(opts, polys));
-  opp::PointObstacles plain(pts);
+  const auto plain = opp::point_obstacles(pts);  // the same points without the island
   for (int q = 0; q < 500; ++q) {
     const opp::Vec2 a{u(g) * 1000, u(g) * 1000}, b{u(g) * 1000, u(g) * 1000};
     const double d = u(g) * 20;
-    ASSERT_EQ(chart.segment_clear(a, b, d), plain.segment_clear(a, b, d));
-    ASSERT_NEAR(chart.nearest(a), plain.nearest(a), 1e-9);
+    ASSERT_EQ(chart.segment_clear(a, b, d), plain->segment_clear(a, b, d));
+    ASSERT_NEAR(chart.nearest(a), plain->nearest(a), 1e-9);
   }
   EXPECT_FALSE(chart.segment_clear({2050, 1900}, {2050, 2200}, 0.0));  // crosses the island
   EXPECT_EQ(chart.nearest({2050, 2050}), 0.0);                         // inside land

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 
@@ -349,7 +350,7 @@ TEST(PlannerFallback, RelaxedWhenNoCompliantPathExists) {
     walls.push_back({n, 900});
     walls.push_back({n, -900});
   }
-  auto fixed = std::make_shared<opp::PointObstacles>(walls);
+  auto fixed = opp::point_obstacles(walls);
   s.fixed = fixed;
   s.problem.fixed = fixed.get();
   s.problem.start = {0, -200};

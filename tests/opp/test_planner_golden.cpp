@@ -14,6 +14,7 @@
 
 #include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
+#include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 
@@ -110,8 +111,8 @@ std::vector<std::string> run_all() {
     {
       opp::Scenario sc = opp::paper_scenario(2);
       auto pts = opp::random_points(sc.problem, 2000, 1500.0, seed);
-      opp::PointObstacles fixed(pts);
-      sc.problem.fixed = &fixed;
+      const auto fixed = opp::point_obstacles(pts);
+      sc.problem.fixed = fixed.get();
       sc.problem.targets = opp::random_targets(sc.problem, 6, 6.0, seed);
       sc.params.seed = seed;
       sc.params.max_iterations = 2000;

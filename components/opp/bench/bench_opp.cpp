@@ -21,6 +21,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 
@@ -377,7 +378,7 @@ int main(int argc, char** argv) {
     auto s = opp::paper_scenario(1);
     const auto tb = Clock::now();
     auto pts = opp::random_points(s.problem, np, 2.0 * s.params.safety_distance, 99);
-    auto fixed = std::make_shared<opp::PointObstacles>(std::move(pts));
+    auto fixed = opp::point_obstacles(std::move(pts));
     const double build = 1e3 * since(tb);
     s.fixed = fixed;
     s.problem.fixed = fixed.get();

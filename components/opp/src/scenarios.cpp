@@ -1,5 +1,7 @@
 #include "mpgc/opp/scenarios.hpp"
 
+#include "mpgc/opp/chart_obstacles.hpp"
+
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -34,7 +36,7 @@ Scenario paper_scenario(int n, double L, double speed) {
     const Vec2 u{std::sqrt(0.5), std::sqrt(0.5)}, nrm{-std::sqrt(0.5), std::sqrt(0.5)};
     for (double t = -40 * L; t <= 180 * L; t += L)
       for (double side : {-1.0, 1.0}) walls.push_back(t * u + (side * half) * nrm);
-    s.fixed = std::make_shared<PointObstacles>(std::move(walls));
+    s.fixed = point_obstacles(std::move(walls));
     pb.fixed = s.fixed.get();
   }
   Params& p = s.params;

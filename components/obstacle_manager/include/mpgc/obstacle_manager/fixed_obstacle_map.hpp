@@ -83,6 +83,9 @@ class FixedObstacleMap {
   BoxNE bounds() const;
 
  private:
+  // No point closer than d to the query [qa, qb], looked for around its piece [a, b] (kd-tree
+  // bisection).
+  bool points_clear(geom::Vec2 qa, geom::Vec2 qb, geom::Vec2 a, geom::Vec2 b, double d, int depth) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

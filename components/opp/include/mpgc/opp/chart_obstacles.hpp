@@ -3,6 +3,8 @@
 #pragma once
 
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
 #include "mpgc/opp/obstacles.hpp"
@@ -15,13 +17,22 @@ class ChartObstacles final : public FixedObstacles {
   // Exact distance to points and polygon edges, 0 inside land.
   double nearest(Vec2 p) const override { return map_->clearance(p); }
   bool segment_clear(Vec2 a, Vec2 b, double d) const override {
-    const double c = map_->segment_clearance(a, b);
-    return c >= d && c > 0.0;  // 0 = crosses or touches land, blocked even when d = 0
+    // The search stops at the first obstacle closer than d. At d = 0 a leg that crosses or
+    // touches land (clearance 0) is blocked too.
+    if (d > 0.0) return map_->segment_clear(a, b, d);
+    return map_->segment_clearance(a, b) > 0.0;
   }
   const obstacle_manager::FixedObstacleMap& map() const { return *map_; }
 
  private:
   std::shared_ptr<const obstacle_manager::FixedObstacleMap> map_;
 };
+
+// A point set F (densified shore lines, point features, seed 000 §4.2) in the obstacle manager's
+// index. Throws std::invalid_argument naming a non-finite point.
+inline std::shared_ptr<ChartObstacles> point_obstacles(std::vector<Vec2> points) {
+  return std::make_shared<ChartObstacles>(
+      std::make_shared<const obstacle_manager::FixedObstacleMap>(std::move(points), std::vector<obstacle_manager::Polygon>{}));
+}
 
 }  // namespace mpgc::opp

@@ -1,11 +1,11 @@
 // Fixed obstacles as the planner sees them: one narrow interface injected into the planner
 // (Autoware/OMPL style), so the planner is testable without a chart and the obstacle manager's
-// library plugs in through an adapter. Implementations here: none, analytic discs (benchmark
-// worlds) and a point set F in a kd-tree (seed 000 §4.2).
+// library plugs in through an adapter (chart_obstacles.hpp, also for a bare point set F of seed 000
+// §4.2: one spatial index for fixed obstacles). Implementations here: none and analytic discs
+// (benchmark worlds).
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "mpgc/opp/geometry.hpp"
@@ -43,24 +43,6 @@ class DiscObstacles final : public FixedObstacles {
 
  private:
   std::vector<Disc> discs_;
-};
-
-// A point set F (densified shore lines, point features) in a nanoflann kd-tree.
-class PointObstacles final : public FixedObstacles {
- public:
-  explicit PointObstacles(std::vector<Vec2> points);  // throws std::invalid_argument on NaN
-  ~PointObstacles() override;
-  PointObstacles(const PointObstacles&) = delete;
-  PointObstacles& operator=(const PointObstacles&) = delete;
-  double nearest(Vec2 p) const override;
-  bool segment_clear(Vec2 a, Vec2 b, double d) const override;
-  const std::vector<Vec2>& points() const { return points_; }
-
- private:
-  struct Index;
-  bool clear_piece(Vec2 a, Vec2 b, double d, int depth) const;
-  std::vector<Vec2> points_;
-  std::unique_ptr<Index> index_;
 };
 
 }  // namespace mpgc::opp
