@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
           if (st->encounters.size() != before)
             for (const auto& t : pb.targets)
               if (t.pinned.obligation != opp::Obligation::kNone)
-                c->log().debug("target {}: {} pinned at course {:.1f} deg", t.id, opp::to_string(t.pinned.obligation),
+                c->log().debug("target {}: {} pinned at course {:.1f} deg", t.id, mpgc::colreg::to_string(t.pinned.obligation),
                                mpgc::geo::rad2deg(t.pinned.course0));
         } catch (const std::exception& e) {
           c->reject("encounters", e.what());

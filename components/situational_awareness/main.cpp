@@ -38,7 +38,7 @@ struct Params {
   mpgc::nav::JumpGateParams jumps;  // own position jumps (timeout: own_timeout)
   sa::TrackerParams tracker;
   cr::ColregParams colreg;
-  double theta_o_deg = 22.5, theta_h_deg = 22.5, overtake_deg = 67.5, crossing_deg = 5.0;  // [deg]
+  double abaft_beam_deg = 22.5, head_on_sector_deg = 22.5, overtake_deg = 67.5, crossing_deg = 5.0;  // [deg]
 };
 
 void declare(mpgc::rt::ParamSet& ps, Params& p) {
@@ -70,8 +70,8 @@ void declare(mpgc::rt::ParamSet& ps, Params& p) {
   ps.add("tracker.max_contacts", &t.max_contacts, 5000, "-", 1, 1000000, "larger radar sweeps are refused");
   ps.add("tracker.max_tracks", &t.max_tracks, 5000, "-", 1, 1000000, "no tracks are started beyond this");
   ps.add("tracker.max_speed", &t.max_speed, 40.0, "m/s", 1.0, 200.0, "faster AIS SOG is refused");
-  ps.add("colreg.theta_o", &p.theta_o_deg, 22.5, "deg", 0.0, 90.0, "overtaking: abaft the beam by more (rule 13)");
-  ps.add("colreg.theta_h", &p.theta_h_deg, 22.5, "deg", 0.0, 90.0, "head-on half sector (seed 000; DNV uses 5)");
+  ps.add("colreg.abaft_beam", &p.abaft_beam_deg, 22.5, "deg", 0.0, 90.0, "overtaking: abaft the beam by more (rule 13)");
+  ps.add("colreg.head_on_sector", &p.head_on_sector_deg, 22.5, "deg", 0.0, 90.0, "head-on half sector (seed 000; DNV uses 5)");
   ps.add("colreg.overtake_aspect", &p.overtake_deg, 67.5, "deg", 0.0, 180.0, "DNV theta13Criteria");
   ps.add("colreg.crossing_aspect", &p.crossing_deg, 5.0, "deg", 0.0, 90.0, "DNV theta15Criteria");
   ps.add("colreg.d_colreg", &p.colreg.d_colreg, 6.0 * geo::kNauticalMile, "m", 1.0, inf, "COLREG zone radius");
@@ -133,8 +133,8 @@ int main(int argc, char** argv) {
   mpgc::rt::SilenceWatch sensors;
   return mpgc::rt::run_component("situational_awareness", argc, argv, ps, [&](mpgc::rt::Component& c) {
     own_jumps.emplace(mpgc::nav::JumpGateParams{p.jumps.max_speed, p.jumps.margin, p.own_timeout});
-    p.colreg.theta_o = geo::deg2rad(p.theta_o_deg);
-    p.colreg.theta_h = geo::deg2rad(p.theta_h_deg);
+    p.colreg.abaft_beam = geo::deg2rad(p.abaft_beam_deg);
+    p.colreg.head_on_sector = geo::deg2rad(p.head_on_sector_deg);
     p.colreg.overtake_aspect = geo::deg2rad(p.overtake_deg);
     p.colreg.crossing_aspect = geo::deg2rad(p.crossing_deg);
     p.colreg.validate();

@@ -115,31 +115,31 @@ TEST(Classify, NoRiskWhenOpeningFarWideOrLate) {
 
 TEST(Classify, SectorBoundariesFollowThetaH) {
   cr::ColregParams p;
-  // Target 10 deg on the starboard bow, heading reciprocal-ish: head-on with theta_h = 22.5 deg,
+  // Target 10 deg on the starboard bow, heading reciprocal-ish: head-on with head_on_sector = 22.5 deg,
   // a crossing with the DNV theta14 = 5 deg.
   const double b = deg2rad(10);
   const auto own = ship(0, 0, 0, 5);
   const auto tgt = ship(3000 * std::cos(b), 3000 * std::sin(b), 190, 5);
   EXPECT_EQ(cr::classify_sectors(cr::relative_bearing(own, tgt), cr::aspect(own, tgt), p), EncounterType::kHeadOn);
-  p.theta_h = deg2rad(5);
+  p.head_on_sector = deg2rad(5);
   EXPECT_EQ(cr::classify_sectors(cr::relative_bearing(own, tgt), cr::aspect(own, tgt), p),
             EncounterType::kCrossingGiveWay);
 }
 
 TEST(Params, DnvSettingsAndValidation) {
   const auto p = cr::ColregParams::from_dnv_settings(mpgc::testing::shared_data("encounters/dnv/encounter_settings.json"));
-  EXPECT_NEAR(p.theta_o, deg2rad(22.5), 1e-12);
-  EXPECT_NEAR(p.theta_h, deg2rad(5.0), 1e-12);
+  EXPECT_NEAR(p.abaft_beam, deg2rad(22.5), 1e-12);
+  EXPECT_NEAR(p.head_on_sector, deg2rad(5.0), 1e-12);
   EXPECT_NEAR(p.overtake_aspect, deg2rad(67.5), 1e-12);
   EXPECT_NEAR(p.crossing_aspect, deg2rad(5.0), 1e-12);
   EXPECT_THROW(cr::ColregParams::from_dnv_settings("/nonexistent/settings.json"), std::runtime_error);
   cr::ColregParams bad;
-  bad.theta_h = std::nan("");
+  bad.head_on_sector = std::nan("");
   try {
     bad.validate();
-    FAIL() << "NaN theta_h accepted";
+    FAIL() << "NaN head_on_sector accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("theta_h"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("head_on_sector"), std::string::npos);
   }
   bad = cr::ColregParams{};
   bad.cpa_risk = -1;

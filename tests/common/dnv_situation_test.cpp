@@ -102,7 +102,7 @@ TEST(Dnv, CpaTcpaAgreeWithFlatEarthCsvForAll140Targets) {
 }
 
 // With the generator's own sector angles (encounter_settings.json: theta14 = 5 deg) every target
-// must come out as desired. With seed 000's theta_h = 22.5 deg the only possible disagreement is
+// must come out as desired. With seed 000's head_on_sector = 22.5 deg the only possible disagreement is
 // a fine crossing (course difference > 135 deg) that seed 000 calls head-on: both relative
 // bearings within 22.5 deg, one of them beyond DNV's 5 deg.
 TEST(Dnv, ClassificationAgreesWithDesiredEncounterType) {
@@ -129,12 +129,12 @@ TEST(Dnv, ClassificationAgreesWithDesiredEncounterType) {
     if (a_seed.type != want) {
       EXPECT_EQ(a_seed.type, cr::EncounterType::kHeadOn);
       EXPECT_TRUE(want == cr::EncounterType::kCrossingGiveWay || want == cr::EncounterType::kCrossingStandOn);
-      EXPECT_LE(std::fabs(a_seed.beta), p_seed.theta_h);
-      EXPECT_LE(std::fabs(a_seed.alpha), p_seed.theta_h);
-      EXPECT_GT(std::max(std::fabs(a_seed.beta), std::fabs(a_seed.alpha)), p_dnv.theta_h);
+      EXPECT_LE(std::fabs(a_seed.beta), p_seed.head_on_sector);
+      EXPECT_LE(std::fabs(a_seed.alpha), p_seed.head_on_sector);
+      EXPECT_GT(std::max(std::fabs(a_seed.beta), std::fabs(a_seed.alpha)), p_dnv.head_on_sector);
     }
   }
-  std::printf("classification agreement: %d/140 with encounter_settings.json, %d/140 with seed 000 theta_h\n",
+  std::printf("classification agreement: %d/140 with encounter_settings.json, %d/140 with seed 000 head_on_sector\n",
               agree_dnv, agree_seed);
   EXPECT_EQ(agree_dnv, 140);
 }

@@ -13,21 +13,21 @@ const opp::Vec2 kOwn{0, 0}, kNorth{6, 0};
 TEST(Colreg, HeadOnRequiresTargetOnPort) {
   // Target ahead, reciprocal course, slightly to starboard -> non-compliant (eq. 19).
   auto c = opp::colreg_check(kOwn, kNorth, {2000, 50}, {-6, 0}, kP);
-  EXPECT_EQ(c.situation, opp::ColregSituation::kHeadOn);
+  EXPECT_EQ(c.situation, mpgc::colreg::EncounterType::kHeadOn);
   EXPECT_FALSE(c.compliant);
   c = opp::colreg_check(kOwn, kNorth, {2000, -50}, {-6, 0}, kP);
-  EXPECT_EQ(c.situation, opp::ColregSituation::kHeadOn);
+  EXPECT_EQ(c.situation, mpgc::colreg::EncounterType::kHeadOn);
   EXPECT_TRUE(c.compliant);
-  // 30 deg off reciprocal is beyond theta_h = 22.5 deg: no head-on.
+  // 30 deg off reciprocal is beyond head_on_sector = 22.5 deg: no head-on.
   c = opp::colreg_check(kOwn, kNorth, {2000, 50}, {-6 * std::cos(0.52), -6 * std::sin(0.52)}, kP);
-  EXPECT_NE(c.situation, opp::ColregSituation::kHeadOn);
+  EXPECT_NE(c.situation, mpgc::colreg::EncounterType::kHeadOn);
 }
 
 TEST(Colreg, CrossingFromStarboardGivesWay) {
   // Target from starboard heading west; meets own route at N = 1000.
   // Own first at x_c (target still 1500 m east) -> non-compliant (eq. 18).
   auto c = opp::colreg_check(kOwn, kNorth, {1000, 1500}, {0, -6}, kP);
-  EXPECT_EQ(c.situation, opp::ColregSituation::kCrossing);
+  EXPECT_EQ(c.situation, mpgc::colreg::EncounterType::kCrossingGiveWay);
   EXPECT_FALSE(c.compliant);
   // Target first (only 300 m from x_c) -> own passes astern: compliant.
   c = opp::colreg_check(kOwn, kNorth, {1000, 300}, {0, -6}, kP);
@@ -37,7 +37,7 @@ TEST(Colreg, CrossingFromStarboardGivesWay) {
 TEST(Colreg, CrossingFromPortStandsOn) {
   // Target from port heading east: own first is the compliant case.
   auto c = opp::colreg_check(kOwn, kNorth, {1000, -1500}, {0, 6}, kP);
-  EXPECT_EQ(c.situation, opp::ColregSituation::kCrossing);
+  EXPECT_EQ(c.situation, mpgc::colreg::EncounterType::kCrossingStandOn);
   EXPECT_TRUE(c.compliant);
   c = opp::colreg_check(kOwn, kNorth, {1000, -300}, {0, 6}, kP);
   EXPECT_FALSE(c.compliant);
@@ -48,7 +48,7 @@ TEST(Colreg, OvertakingMustNotCrossAhead) {
   // routes meet ahead, own first -> crossing the overtaken vessel's route ahead: non-compliant.
   const opp::Vec2 v{6 * std::cos(0.17), 6 * std::sin(0.17)};
   auto c = opp::colreg_check(kOwn, v, {300, 200}, {3, 0}, kP);
-  EXPECT_EQ(c.situation, opp::ColregSituation::kOvertaking);
+  EXPECT_EQ(c.situation, mpgc::colreg::EncounterType::kOvertaking);
   EXPECT_FALSE(c.compliant);
   // Parallel courses never cross: compliant.
   c = opp::colreg_check(kOwn, kNorth, {300, 200}, {3, 0}, kP);
@@ -58,7 +58,7 @@ TEST(Colreg, OvertakingMustNotCrossAhead) {
 TEST(Colreg, StoppedTargetHasNoRoute) {
   auto c = opp::colreg_check(kOwn, kNorth, {1000, 0}, {0, 0}, kP);
   EXPECT_TRUE(c.compliant);
-  EXPECT_EQ(c.situation, opp::ColregSituation::kNone);
+  EXPECT_EQ(c.situation, mpgc::colreg::EncounterType::kNone);
 }
 
 // --- obligations pinned for the whole encounter (colreg_check_pinned) ------------------------------
@@ -75,13 +75,13 @@ opp::PinnedEncounter pinned(opp::Obligation o, double course0_deg = 0.0, int sid
 
 TEST(ColregPinned, HeadOnStaysHeadOnAfterAPortTurn) {
   // The target ahead on a reciprocal course, slightly to starboard: non-compliant head-on for the
-  // per-leg model. After a 30 deg turn to port it is no head-on for that model (beyond theta_h)
+  // per-leg model. After a 30 deg turn to port it is no head-on for that model (beyond head_on_sector)
   // and the routes no longer meet ahead: "compliant", to be passed starboard to starboard.
   const opp::Vec2 v = heading(-30), w{-6, 0}, y{4000, 300};
   EXPECT_FALSE(opp::colreg_check(kOwn, kNorth, y, w, kP).compliant);
   EXPECT_TRUE(opp::colreg_check(kOwn, v, y, w, kP).compliant);
   const auto c = opp::colreg_check_pinned(kOwn, v, y, w, pinned(opp::Obligation::kHeadOn), kP);
-  EXPECT_EQ(c.situation, opp::ColregSituation::kHeadOn);
+  EXPECT_EQ(c.situation, mpgc::colreg::EncounterType::kHeadOn);
   EXPECT_FALSE(c.compliant);
   // To starboard with the target on the port side: compliant; the target on starboard: not.
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(30), {4000, -100}, w, pinned(opp::Obligation::kHeadOn), kP).compliant);
@@ -101,7 +101,7 @@ TEST(ColregPinned, OpeningLegIsClear) {
 TEST(ColregPinned, GiveWayMayNotCrossAheadNorTurnToPort) {
   // Target from starboard heading west, meeting the own route at N = 1000; own first at x_c.
   const opp::Vec2 w{0, -6}, y{1000, 1500};
-  const auto gw = pinned(opp::Obligation::kGiveWay, 0.0, -1);
+  const auto gw = pinned(opp::Obligation::kCrossingGiveWay, 0.0, -1);
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, kNorth, y, w, gw, kP).compliant);
   // A port turn: the per-leg model sees the target on its starboard quarter, routes meeting
   // ahead of both with own first... pinned, any port alteration is refused.

@@ -36,7 +36,7 @@ TEST(EncounterMemory, PinsAtRiskFarOutsideTheColregZone) {
   std::vector<opp::Target> ts{target(1, 12000, -200, 180), target(2, 6000, 6000, -90), target(3, 0, 20000, 0)};
   mem.update(params(), own_at(0, 0, 0), ts);
   EXPECT_EQ(ts[0].pinned.obligation, opp::Obligation::kHeadOn);
-  EXPECT_EQ(ts[1].pinned.obligation, opp::Obligation::kGiveWay);
+  EXPECT_EQ(ts[1].pinned.obligation, opp::Obligation::kCrossingGiveWay);
   EXPECT_EQ(ts[1].pinned.track_side, -1);  // the own ship is south of the westbound target's track
   EXPECT_EQ(ts[2].pinned.obligation, opp::Obligation::kNone);
   EXPECT_NEAR(ts[0].pinned.course0, 0.0, 1e-12);
@@ -71,11 +71,11 @@ TEST(EncounterMemory, GiveWayHeldUntilAcrossTheTrackAstern) {
   opp::EncounterMemory mem;
   std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};
   mem.update(params(), own_at(0, 0, 0), ts);
-  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kGiveWay);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kCrossingGiveWay);
   // Own ship turned hard to starboard, range opening but still south of the track: held.
   std::vector<opp::Target> t1{target(2, 6000, 2000, -90)};
   mem.update(params(), own_at(4000, 1800, 120), t1);
-  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kGiveWay);
+  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kCrossingGiveWay);
   // Across the track, astern of the target and opening: released.
   std::vector<opp::Target> t2{target(2, 6000, 0, -90)};
   mem.update(params(), own_at(6500, 2500, 30), t2);
@@ -102,11 +102,11 @@ TEST(EncounterMemory, ATargetThatTurnsStartsANewEncounter) {
   opp::EncounterMemory mem;
   std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};
   mem.update(params(), own_at(0, 0, 0), ts);
-  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kGiveWay);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kCrossingGiveWay);
   // 10 deg is the same encounter; 60 deg, now heading straight for the own ship, is a new one.
   std::vector<opp::Target> t1{target(2, 5900, 5500, -100)};
   mem.update(params(), own_at(500, 0, 0), t1);
-  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kGiveWay);
+  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kCrossingGiveWay);
   std::vector<opp::Target> t2{target(2, 6000, 500, 180)};
   mem.update(params(), own_at(1000, 0, 0), t2);
   EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kHeadOn);
@@ -116,11 +116,11 @@ TEST(EncounterMemory, AGiveWayManoeuvreThatOpensTheRangeDoesNotEndTheEncounter) 
   opp::EncounterMemory mem;
   std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};  // range 8.5 km, beyond release_range
   mem.update(params(), own_at(0, 0, 0), ts);
-  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kGiveWay);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kCrossingGiveWay);
   // Turned away (south): opening at 5.4 km, beyond release_range but inside the pinning range.
   std::vector<opp::Target> t1{target(2, 6000, 4000, -90)};
   mem.update(params(), own_at(2000, 300, 180), t1);
-  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kGiveWay);
+  EXPECT_EQ(t1[0].pinned.obligation, opp::Obligation::kCrossingGiveWay);
   // Opening beyond the range it was pinned at: over.
   std::vector<opp::Target> t2{target(2, 6000, 3000, -90)};
   mem.update(params(), own_at(-4000, 1500, 180), t2);

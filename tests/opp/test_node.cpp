@@ -74,7 +74,7 @@ TEST(OppNode, EncounterParamsAndReportsUseTheRuleSectors) {
   const opp::EncounterMemoryParams ep = opp::encounter_params(p, s);
   EXPECT_DOUBLE_EQ(ep.cpa_risk, 1500);
   EXPECT_DOUBLE_EQ(ep.tcpa_max, 20000.0 / 5.0);  // the straight-line time to the goal
-  EXPECT_DOUBLE_EQ(ep.theta_o, p.sector_abaft_beam);
+  EXPECT_DOUBLE_EQ(ep.abaft_beam, p.sector_abaft_beam);
   std::vector<std::string> rejected;
   const auto rep = opp::report_encounters(p, s, &rejected);
   ASSERT_EQ(rep.size(), 1u);

@@ -275,7 +275,7 @@ TEST(PlannerColreg, PinnedGiveWayDoesNotCrossAheadOutsideTheColregZone) {
     const double tf = time_at_north(free, 6000);
     ahead_unpinned += std::isfinite(tf) && (t.p + tf * t.v).y > at(free, tf).y;
     auto pinned = s;
-    pinned.problem.targets[0].pinned = {opp::Obligation::kGiveWay, 0.0, -1, -kPi / 2};
+    pinned.problem.targets[0].pinned = {opp::Obligation::kCrossingGiveWay, 0.0, -1, -kPi / 2};
     const auto r = run(pinned, seed, 4000);
     ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
     expect_valid(pinned.problem, pinned.params, r);

@@ -79,7 +79,7 @@ std::vector<std::string> run_all() {
       sc.params.seed = seed;
       sc.params.max_iterations = 3000;
       for (auto& t : sc.problem.targets) {
-        t.pinned.obligation = t.id % 2 ? opp::Obligation::kGiveWay : opp::Obligation::kHeadOn;
+        t.pinned.obligation = t.id % 2 ? opp::Obligation::kCrossingGiveWay : opp::Obligation::kHeadOn;
         t.pinned.course0 = sc.problem.heading;
         t.pinned.track_side = opp::track_side(t.v, sc.problem.start - t.p);
         t.pinned.target_course = std::atan2(t.v.y, t.v.x);

@@ -49,7 +49,7 @@ TEST(ClassifyTool, PrintsTargetsAndAgreementLine) {
   EXPECT_EQ(agreement(out), std::make_pair(6, 6)) << out;
   EXPECT_NE(out.find("desired head-on [agree]"), std::string::npos);
   EXPECT_NE(out.find("CPA "), std::string::npos);
-  // Seed 000 sectors: situation 11's first target is a fine crossing, head-on for theta_h = 22.5.
+  // Seed 000 sectors: situation 11's first target is a fine crossing, head-on for head_on_sector = 22.5.
   std::tie(rc, out) = run(exe + " " + files);
   EXPECT_EQ(agreement(out), std::make_pair(5, 6)) << out;
   // A malformed file: error on stderr, exit 1, the others still counted.

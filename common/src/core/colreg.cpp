@@ -81,8 +81,8 @@ void check_positive(double v, const char* name) {
 }  // namespace
 
 void ColregParams::validate() const {
-  check_angle(theta_o, 0.0, kPi / 2, "theta_o");
-  check_angle(theta_h, 0.0, kPi / 2, "theta_h");
+  check_angle(abaft_beam, 0.0, kPi / 2, "abaft_beam");
+  check_angle(head_on_sector, 0.0, kPi / 2, "head_on_sector");
   check_angle(overtake_aspect, 0.0, kPi, "overtake_aspect");
   check_angle(crossing_aspect, 0.0, kPi / 2, "crossing_aspect");
   check_positive(d_colreg, "d_colreg");
@@ -119,8 +119,8 @@ ColregParams ColregParams::from_dnv_settings(const std::string& path) {
   if (std::fabs((lo + hi) - 2.0 * kPi) > 1e-9)
     throw std::runtime_error(path + ": classification.theta15 is not symmetric about the stern");
   ColregParams p;
-  p.theta_o = lo - kPi / 2;
-  p.theta_h = angle(c["theta14Criteria"], "classification.theta14Criteria");
+  p.abaft_beam = lo - kPi / 2;
+  p.head_on_sector = angle(c["theta14Criteria"], "classification.theta14Criteria");
   p.overtake_aspect = angle(c["theta13Criteria"], "classification.theta13Criteria");
   p.crossing_aspect = angle(c["theta15Criteria"], "classification.theta15Criteria");
   try {
@@ -134,11 +134,11 @@ ColregParams ColregParams::from_dnv_settings(const std::string& path) {
 EncounterType classify_sectors(double beta, double alpha, const ColregParams& p) {
   const double b360 = geo::wrap_2pi(beta), a360 = geo::wrap_2pi(alpha);
   const double b180 = geo::wrap_pi(beta), a180 = geo::wrap_pi(alpha);
-  const double stern_lo = kPi / 2 + p.theta_o, stern_hi = 1.5 * kPi - p.theta_o;  // DNV theta15
+  const double stern_lo = kPi / 2 + p.abaft_beam, stern_hi = 1.5 * kPi - p.abaft_beam;  // DNV theta15
   // Rule 13 first: "any vessel overtaking any other shall keep out of the way" overrides 14/15.
   if (b360 > stern_lo && b360 < stern_hi && std::fabs(a180) <= p.overtake_aspect) return EncounterType::kOvertaken;
   if (a360 > stern_lo && a360 < stern_hi && std::fabs(b180) <= p.overtake_aspect) return EncounterType::kOvertaking;
-  if (std::fabs(b180) <= p.theta_h && std::fabs(a180) <= p.theta_h) return EncounterType::kHeadOn;
+  if (std::fabs(b180) <= p.head_on_sector && std::fabs(a180) <= p.head_on_sector) return EncounterType::kHeadOn;
   // Rule 15: the ship that has the other on her own starboard side keeps out of the way.
   if (b360 > 0.0 && b360 < stern_lo && a180 > -stern_lo && a180 <= p.crossing_aspect)
     return EncounterType::kCrossingGiveWay;

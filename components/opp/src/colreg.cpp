@@ -20,22 +20,15 @@ double arrival_difference(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, double c, const Colr
 
 }  // namespace
 
-const char* to_string(Obligation o) {
-  switch (o) {
-    case Obligation::kNone: return "none";
-    case Obligation::kHeadOn: return "head-on";
-    case Obligation::kGiveWay: return "give-way";
-    case Obligation::kOvertaking: return "overtaking";
-  }
-  return "?";
+bool pinnable(Obligation o) {
+  return o == Obligation::kNone || o == Obligation::kHeadOn || o == Obligation::kCrossingGiveWay ||
+         o == Obligation::kOvertaking;
 }
 
 ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
   if (e.obligation == Obligation::kNone) return colreg_check(x0, v, y0, w, p);
   ColregCheck out;
-  out.situation = e.obligation == Obligation::kHeadOn    ? ColregSituation::kHeadOn
-                  : e.obligation == Obligation::kGiveWay ? ColregSituation::kCrossing
-                                                         : ColregSituation::kOvertaking;
+  out.situation = e.obligation;
   const double vn = norm(v), wn = norm(w);
   if (vn < p.min_speed) return out;
   const Vec2 d = y0 - x0;
@@ -44,13 +37,13 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
   const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);
   switch (e.obligation) {
     case Obligation::kHeadOn: out.compliant = cross(v, d) < 0.0 && !port_turn; break;
-    case Obligation::kGiveWay: {
+    case Obligation::kCrossingGiveWay: {
       if (across_astern(e, w, x0 - y0)) return out;
       out.compliant = !port_turn && !(dt <= 0.0);
       break;
     }
     case Obligation::kOvertaking: out.compliant = !(dt <= 0.0); break;
-    case Obligation::kNone: break;
+    default: break;  // kNone handled above; stand-on and overtaken are never pinned
   }
   return out;
 }
@@ -61,9 +54,9 @@ ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p
   if (vn < p.min_speed || wn < p.min_speed) return out;  // a drifting target has no route (§5.2)
   const double c = dot(v, w) / (vn * wn);
   const Vec2 d = y0 - x0;
-  // §5.5 head-on: routes within theta_h of reciprocal -> the target must be on the port side (eq. 19).
-  if (c < -std::cos(p.theta_head_on)) {
-    out.situation = ColregSituation::kHeadOn;
+  // §5.5 head-on: routes within theta_h (head_on_course_angle) of reciprocal -> the target must be on the port side (eq. 19).
+  if (c < -std::cos(p.head_on_course_angle)) {
+    out.situation = colreg::EncounterType::kHeadOn;
     if (!(cross(v, d) < 0.0)) {
       out.compliant = false;
       return out;
@@ -78,12 +71,13 @@ ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p
   if (!(s > 0.0 && q > 0.0)) return out;  // eq. 14: x_c must lie ahead of both vessels
   // eq. 15: |x_c - x0|/|v| - |x_c - y0|/|w| = s - q (> 0: the target is first at x_c).
   const double dt = s - q;
-  if (c > std::cos(p.theta_overtaking)) {  // eq. 16
-    out.situation = ColregSituation::kOvertaking;
+  if (c > std::cos(p.overtaking_course_angle)) {  // eq. 16
+    out.situation = vn > wn ? colreg::EncounterType::kOvertaking : colreg::EncounterType::kOvertaken;
     out.compliant = dt > 0.0;  // the overtaken route must be crossed behind the other vessel
     return out;
   }
-  if (out.situation != ColregSituation::kHeadOn) out.situation = ColregSituation::kCrossing;
+  if (out.situation != colreg::EncounterType::kHeadOn)
+    out.situation = cross(v, d) > 0.0 ? colreg::EncounterType::kCrossingGiveWay : colreg::EncounterType::kCrossingStandOn;
   out.compliant = out.compliant && (vxw * dt < 0.0);  // eq. 18 (eq. 17 x eq. 15)
   return out;
 }

@@ -10,14 +10,8 @@ namespace mpgc::opp {
 
 namespace {
 
-Obligation obligation_of(colreg::EncounterType t) {
-  switch (t) {
-    case colreg::EncounterType::kHeadOn: return Obligation::kHeadOn;
-    case colreg::EncounterType::kCrossingGiveWay: return Obligation::kGiveWay;
-    case colreg::EncounterType::kOvertaking: return Obligation::kOvertaking;
-    default: return Obligation::kNone;  // stand-on: the per-leg model (eq. 18) keeps course
-  }
-}
+// Stand-on and overtaken situations are not pinned: the per-leg model (eq. 18) keeps course.
+Obligation obligation_of(colreg::EncounterType t) { return pinnable(t) ? t : Obligation::kNone; }
 
 }  // namespace
 
@@ -29,8 +23,8 @@ void EncounterMemoryParams::validate() const {
   need(tcpa_max > 0, "tcpa_max", "must be > 0");
   need(std::isfinite(release_range) && release_range >= 0, "release_range", "must be finite and >= 0");
   need(new_course > 0 && new_course <= geo::kPi, "new_course", "must be in (0, pi]");
-  need(theta_o > 0 && theta_o < geo::kPi / 2, "theta_o", "must be in (0, pi/2)");
-  need(theta_h > 0 && theta_h < geo::kPi / 2, "theta_h", "must be in (0, pi/2)");
+  need(abaft_beam > 0 && abaft_beam < geo::kPi / 2, "abaft_beam", "must be in (0, pi/2)");
+  need(head_on_sector > 0 && head_on_sector < geo::kPi / 2, "head_on_sector", "must be in (0, pi/2)");
 }
 
 PinnedEncounter EncounterMemory::find(uint32_t id) const {
@@ -42,8 +36,8 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
                              std::vector<Target>& targets) {
   p.validate();
   colreg::ColregParams cp;
-  cp.theta_o = p.theta_o;
-  cp.theta_h = p.theta_h;
+  cp.abaft_beam = p.abaft_beam;
+  cp.head_on_sector = p.head_on_sector;
   cp.d_colreg = std::numeric_limits<double>::infinity();  // the TCPA limit bounds the range
   cp.cpa_risk = p.cpa_risk;
   cp.tcpa_max = p.tcpa_max;
@@ -63,7 +57,7 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
       bool done = a.cpa.tcpa <= 0.0 && a.cpa.range > std::max(p.release_range, it->second.range0);
       if (tk.speed() > 0.5)  // the course of a (nearly) stopped target is noise
         done = done || std::fabs(std::remainder(tk.course() - e.target_course, 2.0 * geo::kPi)) > p.new_course;
-      if (a.cpa.tcpa <= 0.0 && e.obligation == Obligation::kGiveWay)
+      if (a.cpa.tcpa <= 0.0 && e.obligation == Obligation::kCrossingGiveWay)
         done = done || across_astern(e, t.v, r);
       else if (a.cpa.tcpa <= 0.0)
         done = done || std::fabs(a.beta) > 0.5 * geo::kPi;  // abaft the beam and opening
@@ -95,7 +89,7 @@ void EncounterMemory::restore(const std::vector<PinnedRecord>& records) {
     const std::string what = "pinned encounter of target " + std::to_string(r.id);
     if (!std::isfinite(r.e.course0) || !std::isfinite(r.e.target_course) || !(std::isfinite(r.range0) && r.range0 >= 0))
       throw std::invalid_argument(what + ": non-finite course or range");
-    if (r.e.obligation == Obligation::kNone || static_cast<int>(r.e.obligation) > static_cast<int>(Obligation::kOvertaking))
+    if (r.e.obligation == Obligation::kNone || !pinnable(r.e.obligation))
       throw std::invalid_argument(what + ": no obligation");
     if (r.e.track_side < -1 || r.e.track_side > 1) throw std::invalid_argument(what + ": track_side must be -1, 0 or 1");
     if (!next.emplace(r.id, Entry{r.e, r.range0}).second) throw std::invalid_argument(what + ": listed twice");

@@ -45,7 +45,8 @@ PlannerMemory memory_from_yaml(const std::string& text, const std::string& origi
       PinnedRecord rec;
       rec.id = r["id"].as<uint32_t>();
       const int o = r["obligation"].as<int>();
-      if (o < 0 || o > static_cast<int>(Obligation::kOvertaking)) throw std::invalid_argument("pinned: unknown obligation");
+      if (o < 0 || o > static_cast<int>(Obligation::kOvertaken) || !pinnable(static_cast<Obligation>(o)))
+        throw std::invalid_argument("pinned: unknown obligation " + std::to_string(o) + " (colreg::EncounterType: 1, 2 or 4)");
       rec.e.obligation = static_cast<Obligation>(o);
       rec.e.course0 = r["course0"].as<double>();
       rec.e.track_side = r["track_side"].as<int>();

@@ -26,9 +26,9 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
   ps.add("plan.max_turn", &c.max_turn, geo::deg2rad(60.0), "rad", 0.01, 3.15, "turning-angle limit (eq. 2)");
   ps.add("plan.safety_distance", &c.safety_distance, 1000.0, "m", 0.0, 1e5, "d_safety when the goal does not set one (eq. 4)");
   ps.add("plan.colreg_distance", &c.colreg_distance, 3000.0, "m", 0.0, 1e6, "d_COLREG (§5), at least d_safety");
-  ps.add("plan.theta_overtaking", &c.colreg.theta_overtaking, geo::deg2rad(22.5), "rad", 0.01, 1.5,
+  ps.add("plan.theta_overtaking", &c.colreg.overtaking_course_angle, geo::deg2rad(22.5), "rad", 0.01, 1.5,
          "theta_o of eq. 16: overtaking when the two velocities are within it of each other");
-  ps.add("plan.theta_head_on", &c.colreg.theta_head_on, geo::deg2rad(22.5), "rad", 0.01, 1.5,
+  ps.add("plan.theta_head_on", &c.colreg.head_on_course_angle, geo::deg2rad(22.5), "rad", 0.01, 1.5,
          "theta_h of §5.5: head-on when one velocity is within it of the other's reciprocal");
   ps.add("plan.port_tolerance", &c.colreg.port_tolerance, geo::deg2rad(5.0), "rad", 0.0, 1.5,
          "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
@@ -114,15 +114,15 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   // The plan checks COLREG along the whole path: a risk anywhere within its horizon matters.
   ep.tcpa_max = p.encounter_tcpa > 0 ? p.encounter_tcpa : norm(s.problem.goal.p - s.problem.start) / s.problem.speed;
   ep.release_range = s.constraints.colreg_distance;
-  ep.theta_o = p.sector_abaft_beam;
-  ep.theta_h = p.sector_head_on;
+  ep.abaft_beam = p.sector_abaft_beam;
+  ep.head_on_sector = p.sector_head_on;
   return ep;
 }
 
 std::vector<EncounterReport> report_encounters(const NodeParams& p, const Setup& s, std::vector<std::string>* rejected) {
   colreg::ColregParams cp;
-  cp.theta_o = p.sector_abaft_beam;
-  cp.theta_h = p.sector_head_on;
+  cp.abaft_beam = p.sector_abaft_beam;
+  cp.head_on_sector = p.sector_head_on;
   cp.d_colreg = s.constraints.colreg_distance;
   std::vector<EncounterReport> out;
   for (const Target& t : s.problem.targets) {

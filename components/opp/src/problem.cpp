@@ -26,10 +26,10 @@ void ConstraintParams::validate() const {
   require(fin(colreg_distance) && colreg_distance >= safety_distance, "colreg_distance",
           "must be finite and >= safety_distance");
   require(fin(max_turn) && max_turn > 0, "max_turn", "must be finite and > 0");
-  require(fin(colreg.theta_overtaking) && colreg.theta_overtaking > 0 && colreg.theta_overtaking < kPi / 2,
-          "colreg.theta_overtaking", "must be in (0, pi/2)");
-  require(fin(colreg.theta_head_on) && colreg.theta_head_on > 0 && colreg.theta_head_on < kPi / 2,
-          "colreg.theta_head_on", "must be in (0, pi/2)");
+  require(fin(colreg.overtaking_course_angle) && colreg.overtaking_course_angle > 0 && colreg.overtaking_course_angle < kPi / 2,
+          "colreg.overtaking_course_angle", "must be in (0, pi/2)");
+  require(fin(colreg.head_on_course_angle) && colreg.head_on_course_angle > 0 && colreg.head_on_course_angle < kPi / 2,
+          "colreg.head_on_course_angle", "must be in (0, pi/2)");
   require(fin(colreg.epsilon) && colreg.epsilon > 0 && colreg.epsilon < 1, "colreg.epsilon", "must be in (0, 1)");
   require(fin(colreg.min_speed) && colreg.min_speed >= 0, "colreg.min_speed", "must be finite and >= 0");
   require(fin(colreg.port_tolerance) && colreg.port_tolerance >= 0 && colreg.port_tolerance < kPi, "colreg.port_tolerance",

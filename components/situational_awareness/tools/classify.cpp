@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   app.add_option("files", files, "generated situation files (traffic_situation_NN.json)")->required();
   app.add_option("--settings", settings,
                  "DNV encounter_settings.json: take the sector angles from it (default: seed 000, "
-                 "theta_o = theta_h = 22.5 deg, DNV aspect tolerances)");
+                 "abaft_beam = head_on_sector = 22.5 deg, DNV aspect tolerances)");
   app.add_option("--d-colreg", d_colreg_nm, "[NM] no risk beyond this range (default: no limit; the DNV "
                                             "situations start up to 8.3 NM apart by design)");
   app.add_option("--cpa-risk", cpa_risk_nm, "[NM] no risk when the CPA is wider (default 0.7 NM, seed 002)");
@@ -44,9 +44,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "mpgc_classify: %s\n", e.what());
     return 2;
   }
-  std::printf("# sectors: theta_o %.1f deg, theta_h %.1f deg, overtake aspect %.1f deg, crossing aspect %.1f deg; "
+  std::printf("# sectors: abaft_beam %.1f deg, head_on_sector %.1f deg, overtake aspect %.1f deg, crossing aspect %.1f deg; "
               "risk: d_colreg %.1f NM, cpa %.2f NM, tcpa %.1f min\n",
-              geo::rad2deg(p.theta_o), geo::rad2deg(p.theta_h), geo::rad2deg(p.overtake_aspect),
+              geo::rad2deg(p.abaft_beam), geo::rad2deg(p.head_on_sector), geo::rad2deg(p.overtake_aspect),
               geo::rad2deg(p.crossing_aspect), d_colreg_nm, cpa_risk_nm, tcpa_max_min);
 
   int agree = 0, total = 0, failed = 0;

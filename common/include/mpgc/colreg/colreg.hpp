@@ -74,16 +74,16 @@ const char* to_string(EncounterType t);
 const char* dnv_name(EncounterType t);
 Role role_of(EncounterType t);
 
-// Thresholds of the classification. Defaults: seed 000 §5 (theta_o = theta_h = 22.5 deg) for the
+// Thresholds of the classification. Defaults: seed 000 §5 (abaft_beam = head_on_sector = 22.5 deg) for the
 // sectors and the DNV ship-traffic-generator for the aspect tolerances (encounter_settings.json:
 // theta13Criteria, theta15Criteria); from_dnv_settings() takes all four angles from that file.
 struct ColregParams {
   // Rule 13: a ship "more than 22.5 deg abaft the beam" is overtaking; the stern sector is
-  // |beta| > 90 deg + theta_o (seed 000 eq. 16; DNV theta15 = [90 + theta_o, 270 - theta_o]).
-  double theta_o = geo::deg2rad(22.5);  // [rad]
-  // Rule 14: head-on when each ship sees the other within theta_h of its bow (seed 000 §5.5
+  // |beta| > 90 deg + abaft_beam (seed 000 eq. 16; DNV theta15 = [90 + abaft_beam, 270 - abaft_beam]).
+  double abaft_beam = geo::deg2rad(22.5);  // [rad]
+  // Rule 14: head-on when each ship sees the other within head_on_sector of its bow (seed 000 §5.5
   // assumes 22.5 deg; DNV theta14Criteria uses 5 deg).
-  double theta_h = geo::deg2rad(22.5);  // [rad]
+  double head_on_sector = geo::deg2rad(22.5);  // [rad]
   // Overtaking: the overtaken ship must be within this of the overtaking ship's bow (DNV
   // theta13Criteria, 67.5 deg).
   double overtake_aspect = geo::deg2rad(67.5);  // [rad]

@@ -5,28 +5,26 @@
 
 #include <cstdint>
 
+#include "mpgc/colreg/colreg.hpp"
 #include "mpgc/opp/geometry.hpp"
 
 namespace mpgc::opp {
 
 struct ColregParams {
-  double theta_overtaking = 0.39269908169872414;  // [rad] theta_o of eq. 16 (22.5 deg)
-  double theta_head_on = 0.39269908169872414;     // [rad] theta_h of §5.5 (22.5 deg)
+  double overtaking_course_angle = 0.39269908169872414;  // [rad] theta_o of eq. 16: overtaking when the velocities are within it of each other (22.5 deg)
+  double head_on_course_angle = 0.39269908169872414;     // [rad] theta_h of §5.5: head-on when one velocity is within it of the other's reciprocal (22.5 deg)
   double epsilon = 1e-3;                          // [-] tolerance of the crossing test, eq. 13
   double min_speed = 0.05;                        // [m/s] below it a vessel has no route to cross
   double port_tolerance = 0.08726646259971647;    // [rad] a pinned head-on or give-way leg may point
                                                   // this far to port of the course it was pinned at (5 deg)
 };
 
-enum class ColregSituation {
-  kNone,        // routes do not meet ahead of both vessels and no head-on geometry
-  kHeadOn,      // §5.5
-  kCrossing,    // §5.4
-  kOvertaking,  // §5.3 (eq. 16 holds; either vessel may be the faster one)
-};
-
+// The situation of one leg in the project's one encounter vocabulary (colreg::EncounterType):
+// kNone (routes do not meet ahead of both vessels, no head-on geometry), kHeadOn (§5.5),
+// kCrossingGiveWay / kCrossingStandOn (§5.4, the target on the own starboard / port side),
+// kOvertaking / kOvertaken (§5.3, eq. 16: the own ship the faster / the slower one).
 struct ColregCheck {
-  ColregSituation situation = ColregSituation::kNone;
+  colreg::EncounterType situation = colreg::EncounterType::kNone;
   bool compliant = true;
 };
 
@@ -41,13 +39,15 @@ ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p
 // made before the target is inside d_COLREG turns a head-on into a "crossing" that may be passed
 // starboard to starboard; with the situation pinned when the risk of collision first appears,
 // every leg is held to that situation's rule instead.
-enum class Obligation {
-  kNone,        // not pinned: the per-leg model (eq. 11-19) applies
-  kHeadOn,      // rule 14: alter to starboard, pass port to port
-  kGiveWay,     // rules 15-16: the target is on the starboard side: keep out of its way, astern
-  kOvertaking,  // rule 13: keep out of the way of the overtaken vessel
-};
-const char* to_string(Obligation o);
+//
+// Pinned obligations are colreg::EncounterType values with a duty for the own ship: kNone (not
+// pinned: the per-leg model of eq. 11-19 applies), kHeadOn (rule 14: alter to starboard, pass port
+// to port), kCrossingGiveWay (rules 15-16: the target on the starboard side: keep out of its way,
+// astern) and kOvertaking (rule 13: keep out of the way of the overtaken vessel). Stand-on
+// situations are not pinned (the per-leg model keeps course, eq. 18).
+using Obligation = colreg::EncounterType;
+// True for the four values above.
+bool pinnable(Obligation o);
 
 struct PinnedEncounter {
   Obligation obligation = Obligation::kNone;

@@ -29,8 +29,8 @@ struct EncounterMemoryParams {
   // A target that changes course by more than this starts a new encounter (re-assessed): the
   // own ship's manoeuvres never re-open the situation, the target's do (unexpected behaviour).
   double new_course = 0.2617993877991494;  // [rad] 15 deg
-  double theta_o = 0.39269908169872414;  // [rad] overtaking sector (seed 000 eq. 16)
-  double theta_h = 0.39269908169872414;  // [rad] head-on sector (seed 000 §5.5)
+  double abaft_beam = 0.39269908169872414;  // [rad] rule 13: overtaking from more than this abaft the beam
+  double head_on_sector = 0.39269908169872414;  // [rad] rule 14: head-on when each is within this of the other's bow
   // Throws std::invalid_argument naming the first bad field.
   void validate() const;
 };

@@ -63,7 +63,7 @@ struct ConstraintParams {
   bool escape_start = false;           // start within d_safety of an obstacle or target: plan anyway,
                                        // legs from the start may not get closer than they start
                                        // (false: Status::kInvalidInput)
-  ColregParams colreg;                 // theta_o, theta_h (22.5 deg), eq. 13 tolerance
+  ColregParams colreg;                 // theta_o, theta_h of eq. 16 and §5.5 (22.5 deg), eq. 13 tolerance
   double colreg_spacing = 500.0;       // [m] §5 is checked at a leg's start and every this far along
                                        // it, as the chain of waypoints a long leg stands for (the
                                        // RRT* sets its step: a long edge must not jump over the zone)
