@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "mpgc/colreg/colreg.hpp"
+#include "mpgc/colreg/msg.hpp"
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/nav/jump_gate.hpp"
@@ -37,30 +38,6 @@ msg::PlanStatus to_msg(opp::Status s) {
     case opp::Status::kInvalidInput: return msg::PlanStatus::PLAN_INVALID_INPUT;
   }
   return msg::PlanStatus::PLAN_NO_PATH;
-}
-
-msg::EncounterType to_msg(mpgc::colreg::EncounterType t) {
-  using E = mpgc::colreg::EncounterType;
-  switch (t) {
-    case E::kNone: return msg::EncounterType::ENCOUNTER_NONE;
-    case E::kHeadOn: return msg::EncounterType::ENCOUNTER_HEAD_ON;
-    case E::kCrossingGiveWay: return msg::EncounterType::ENCOUNTER_CROSSING_GIVE_WAY;
-    case E::kCrossingStandOn: return msg::EncounterType::ENCOUNTER_CROSSING_STAND_ON;
-    case E::kOvertaking: return msg::EncounterType::ENCOUNTER_OVERTAKING;
-    case E::kOvertaken: return msg::EncounterType::ENCOUNTER_OVERTAKEN;
-  }
-  return msg::EncounterType::ENCOUNTER_NONE;
-}
-
-msg::OwnRole to_msg(mpgc::colreg::Role r) {
-  using R = mpgc::colreg::Role;
-  switch (r) {
-    case R::kNone: return msg::OwnRole::ROLE_NONE;
-    case R::kGiveWay: return msg::OwnRole::ROLE_GIVE_WAY;
-    case R::kStandOn: return msg::OwnRole::ROLE_STAND_ON;
-    case R::kBothGiveWay: return msg::OwnRole::ROLE_BOTH_GIVE_WAY;
-  }
-  return msg::OwnRole::ROLE_NONE;
 }
 
 }  // namespace

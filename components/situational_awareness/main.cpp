@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "mpgc/colreg/colreg.hpp"
+#include "mpgc/colreg/msg.hpp"
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/nav/jump_gate.hpp"
@@ -97,28 +98,6 @@ msg::Track to_msg(const sa::Track& t, int64_t now_ns) {
              : t.status == sa::TrackStatus::kConfirmed ? msg::TrackStatus::TRACK_CONFIRMED
                                                        : msg::TrackStatus::TRACK_COASTING;
   return m;
-}
-
-msg::EncounterType to_msg(cr::EncounterType t) {
-  switch (t) {
-    case cr::EncounterType::kHeadOn: return msg::EncounterType::ENCOUNTER_HEAD_ON;
-    case cr::EncounterType::kCrossingGiveWay: return msg::EncounterType::ENCOUNTER_CROSSING_GIVE_WAY;
-    case cr::EncounterType::kCrossingStandOn: return msg::EncounterType::ENCOUNTER_CROSSING_STAND_ON;
-    case cr::EncounterType::kOvertaking: return msg::EncounterType::ENCOUNTER_OVERTAKING;
-    case cr::EncounterType::kOvertaken: return msg::EncounterType::ENCOUNTER_OVERTAKEN;
-    case cr::EncounterType::kNone: break;
-  }
-  return msg::EncounterType::ENCOUNTER_NONE;
-}
-
-msg::OwnRole to_msg(cr::Role r) {
-  switch (r) {
-    case cr::Role::kGiveWay: return msg::OwnRole::ROLE_GIVE_WAY;
-    case cr::Role::kStandOn: return msg::OwnRole::ROLE_STAND_ON;
-    case cr::Role::kBothGiveWay: return msg::OwnRole::ROLE_BOTH_GIVE_WAY;
-    case cr::Role::kNone: break;
-  }
-  return msg::OwnRole::ROLE_NONE;
 }
 
 }  // namespace

@@ -54,6 +54,16 @@ const char* dnv_name(EncounterType t) {
   return "?";
 }
 
+const char* to_string(Role r) {
+  switch (r) {
+    case Role::kNone: return "none";
+    case Role::kGiveWay: return "give-way";
+    case Role::kStandOn: return "stand-on";
+    case Role::kBothGiveWay: return "both-give-way";
+  }
+  return "?";
+}
+
 Role role_of(EncounterType t) {
   switch (t) {
     case EncounterType::kHeadOn: return Role::kBothGiveWay;

@@ -239,16 +239,6 @@ const char* to_string(Side s) {
   }
   return "?";
 }
-const char* to_string(colreg::Role r) {
-  switch (r) {
-    case colreg::Role::kNone: return "none";
-    case colreg::Role::kGiveWay: return "give-way";
-    case colreg::Role::kStandOn: return "stand-on";
-    case colreg::Role::kBothGiveWay: return "both-give-way";
-  }
-  return "?";
-}
-
 std::vector<std::uint32_t> Metrics::near_miss_targets() const {
   std::vector<std::uint32_t> ids;
   for (const TargetDistance& td : min_distance_targets)

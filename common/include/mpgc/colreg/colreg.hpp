@@ -73,6 +73,7 @@ const char* to_string(EncounterType t);
 // "overtaking-give-way", "overtaking-stand-on", "noRiskCollision".
 const char* dnv_name(EncounterType t);
 Role role_of(EncounterType t);
+const char* to_string(Role r);  // "none", "give-way", "stand-on", "both-give-way"
 
 // Thresholds of the classification. Defaults: seed 000 §5 (abaft_beam = head_on_sector = 22.5 deg) for the
 // sectors and the DNV ship-traffic-generator for the aspect tolerances (encounter_settings.json:

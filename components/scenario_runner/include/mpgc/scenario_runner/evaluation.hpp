@@ -211,7 +211,7 @@ enum class Verdict { kNotApplicable, kPass, kFail };
 const char* to_string(Verdict v);  // "n/a", "pass", "fail"
 enum class Side { kNone, kPort, kStarboard };
 const char* to_string(Side s);  // "none", "port", "starboard"
-const char* to_string(colreg::Role r);  // "none", "give-way", "stand-on", "both-give-way"
+using colreg::to_string;
 
 // One target's encounter, judged from ground truth.
 struct EncounterResult {
