@@ -2,7 +2,7 @@
 // control/actuators, moves the targets, publishes sensors, ground truth and the clock.
 // Time modes (README.md): realtime, factor (fixed real-time factor), lockstep (barrier on
 // clock/ack, as fast as the slowest participant). The simulator runs on the wall clock.
-#include <algorithm>
+// Its logic is mpgc/ship_simulator/node.hpp (and the world's library); this is its wiring.
 #include <chrono>
 #include <map>
 #include <cmath>
@@ -15,6 +15,7 @@
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/ship_simulator/devices.hpp"
 #include "mpgc/ship_simulator/lockstep.hpp"
+#include "mpgc/ship_simulator/node.hpp"
 #include "mpgc/ship_simulator/sensor_faults.hpp"
 #include "mpgc/ship_simulator/step_log.hpp"
 #include "mpgc/ship_simulator/world.hpp"
@@ -31,75 +32,6 @@ namespace {
 
 using mpgc::ship::check_command;
 
-struct Params {
-  std::string world_file;
-  std::string mode;          // realtime | factor | lockstep
-  double factor = 1.0;       // [-] real-time factor in factor mode
-  double step = 0.1;         // [s] simulation step
-  double duration = 0.0;     // [s] simulated time after which the simulator exits; 0 = never
-  std::string participants;  // comma-separated component names for the lockstep barrier
-  double start_settle = 0.5;  // [s] wall time between all participants alive and step 0
-  double ack_timeout = 1.0;  // [s] wall time before the current Clock is sent again
-  double absent_after = 0.5; // [s] wall: a step this long short of acks, with a participant's
-                             //     liveliness lost, goes on without the missing ones
-  double hang_timeout = 0.0; // [s] wall: drop a missing participant even while alive (0 = never)
-  double truth_period = 0.1; // [s] simulated time between sim/truth samples
-  // Hardware in the loop (README "The simulator as hardware"): NMEA/AIS out on UDP, orders in.
-  bool hil = false;
-  std::string hil_host;
-  int gnss_port = 0, ais_port = 0, gyro_port = 0, feedback_port = 0, orders_port = 0;
-  double gnss_period = 0.2;     // [s] simulated
-  double order_timeout = 2.0;   // [s] simulated: the actuator watchdog in HIL
-  // Actuator watchdog on control/actuators (README "Actuator watchdog").
-  double watchdog_timeout = 2.0;   // [s] simulated time without an order before it trips
-  std::string watchdog_engine;     // reduce | hold
-  double steerage_speed = 3.0;     // [m/s] "reduce": engine to the rpm of this straight speed
-  bool hil_radar = false;       // keep publishing sensors/radar in HIL (a radar with its own DDS link)
-  std::string journal;          // step journal: resume where a killed simulator left off ("" = none)
-
-  void declare(rt::ParamSet& ps) {
-    ps.add("world.file", &world_file, "", "world YAML file (own ship, targets, sensors; README.md)");
-    ps.add("time.mode", &mode, "realtime", "realtime | factor | lockstep", {"realtime", "factor", "lockstep"});
-    ps.add("time.factor", &factor, 1.0, "-", 0.01, 1000.0, "real-time factor in factor mode");
-    ps.add("time.step", &step, 0.1, "s", 0.001, 1.0, "simulation step (RK4 step of the ship model)");
-    ps.add("time.duration", &duration, 0.0, "s", 0.0, 1e7, "simulated time after which to exit (0 = run forever)");
-    ps.add("lockstep.participants", &participants, "", "comma-separated components that must ack every step");
-    ps.add("lockstep.start_settle", &start_settle, 0.5, "s", 0.0, 60.0,
-           "wall time to let discovery settle after every participant is alive, before step 0");
-    ps.add("lockstep.ack_timeout", &ack_timeout, 1.0, "s", 0.01, 60.0, "resend the Clock after this wall time without progress");
-    ps.add("lockstep.absent_after", &absent_after, 0.5, "s", 0.0, 600.0,
-           "a step this long without all acks while a participant's liveliness is lost goes on without the "
-           "missing ones (a dead component must not stop the ship); its next ack re-admits it");
-    ps.add("lockstep.hang_timeout", &hang_timeout, 0.0, "s", 0.0, 3600.0,
-           "drop a participant that is alive but has not acked for this long (0 = wait for ever; set it above "
-           "the planner's time budget)");
-    ps.add("truth.period", &truth_period, 0.1, "s", 0.001, 60.0, "sim/truth publication period (simulated time)");
-    ps.add("hil.enabled", &hil, false, "be the ship's devices: NMEA/AIS on UDP instead of nav/own_state, sensors/*; "
-           "orders from the actuator wire instead of control/actuators");
-    ps.add("hil.host", &hil_host, "127.0.0.1", "IPv4 address of gpsd and the bridge (the devices' wires)");
-    ps.add("hil.gnss_port", &gnss_port, 10110, "-", 1, 65535, "UDP port (gpsd) for the GNSS receiver's RMC/GGA/VTG");
-    ps.add("hil.ais_port", &ais_port, 10111, "-", 1, 65535, "UDP port (gpsd) for the AIS transponder's !AIVDM/!AIVDO");
-    ps.add("hil.gyro_port", &gyro_port, 10112, "-", 1, 65535, "UDP port (bridge) for the gyro compass's $HEHDT/$HEROT");
-    ps.add("hil.feedback_port", &feedback_port, 10113, "-", 1, 65535, "UDP port (bridge) for RSA/RPM feedback");
-    ps.add("hil.orders_port", &orders_port, 10114, "-", 1, 65535, "UDP port this simulator takes ROR/PRC orders on");
-    ps.add("hil.radar", &hil_radar, false, "in HIL, still publish sensors/radar (a radar with its own DDS link)");
-    ps.add("resume.journal", &journal, "",
-           "step journal file: every step's command is appended, and a restarted simulator replays it to resume "
-           "the world where it was, bit for bit (a simulator killed mid-run; \"\" = start afresh)");
-    ps.add("hil.gnss_period", &gnss_period, 0.2, "s", 0.05, 10.0, "GNSS output interval (simulated time)");
-    ps.add("hil.order_timeout", &order_timeout, 2.0, "s", 0.1, 60.0,
-           "actuator watchdog in HIL: no rudder order this long puts the rudder amidships, the engine to watchdog.engine");
-    ps.add("watchdog.timeout", &watchdog_timeout, 2.0, "s", 0.1, 60.0,
-           "actuator watchdog: no valid control/actuators sample for this long (simulated) puts the rudder "
-           "amidships and the engine to watchdog.engine; the next order ends it (4 control periods at 2 Hz)");
-    ps.add("watchdog.engine", &watchdog_engine, "reduce",
-           "engine order while the watchdog has tripped: reduce (to the rpm of watchdog.steerage_speed, never "
-           "above the last order) | hold (the last order, as class rules want for a manned ship)", {"reduce", "hold"});
-    ps.add("watchdog.steerage_speed", &steerage_speed, 3.0, "m/s", 0.0, 30.0,
-           "watchdog.engine=reduce: straight speed whose rpm the engine is reduced to (KVLCC2: steerage at ~6 kn)");
-  }
-};
-
 msg::ShipTruth to_msg(const sim::TruthShip& t) {
   return {t.id, t.mmsi, t.x, t.y, t.heading, t.cog, t.sog, t.u, t.v, t.r, t.length, t.beam};
 }
@@ -107,16 +39,15 @@ msg::ShipTruth to_msg(const sim::TruthShip& t) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Params p;
+  sim::NodeParams p;
   rt::ParamSet ps;
-  p.declare(ps);
+  sim::declare(ps, p);
   return rt::run_component("ship_simulator", argc, argv, ps, [&](rt::Component& c) {
-    if (p.world_file.empty()) throw std::invalid_argument("world.file is required");
-    const auto step_ns = static_cast<int64_t>(std::llround(p.step * 1e9));
-    auto world = std::make_shared<sim::World>(sim::WorldConfig::from_file(p.world_file), step_ns);
+    sim::validate(p);
+    auto world = std::make_shared<sim::World>(sim::WorldConfig::from_file(p.world_file), p.step_ns());
     const auto& cfg = world->config();
-    const bool lockstep = p.mode == "lockstep";
-    const double wall_per_sim = p.mode == "factor" ? 1.0 / p.factor : 1.0;
+    const bool lockstep = p.lockstep();
+    const double wall_per_sim = p.wall_per_sim();
     auto barrier = std::make_shared<sim::LockstepBarrier>(sim::split_names(p.participants));
     c.log().info("world {}: model {}, {} targets, mode {}, step {} s, participants [{}]", p.world_file,
                  world->own().name(), cfg.targets.size(), p.mode, p.step, p.participants);
@@ -135,22 +66,19 @@ int main(int argc, char** argv) {
       uint32_t seq = 0;
       bool started = false;
       bool stopped = false;
-      int64_t last_progress_wall = 0;
-      int64_t step_wall = 0;   // [ns] wall time the current step's Clock was first written
-      int64_t ready_wall = 0;  // [ns] wall time all participants were first seen alive
       int64_t start_wall = 0;
-      int64_t next_truth_ns = 0;
+      sim::OutputSchedule outputs;
+      sim::LockstepPacer pacer;
       msg::Clock last_clock{};
     };
-    auto st = std::make_shared<State>();
+    auto st = std::make_shared<State>(State{{}, 0, false, false, 0, sim::OutputSchedule(p), sim::LockstepPacer(p), {}});
     st->cmd = world->initial_command();
     std::shared_ptr<sim::StepLog> journal;
     if (!p.journal.empty()) {
       journal = std::make_shared<sim::StepLog>(p.journal);
       if (journal->steps() > 0) {
         st->cmd = sim::replay(*world, journal->take_commands(), st->cmd);
-        const auto period = static_cast<int64_t>(std::llround(p.truth_period * 1e9));
-        st->next_truth_ns = (world->time_ns() + period - 1) / period * period;  // the same schedule
+        st->outputs.resume(world->time_ns());  // the same schedule
         c.log().warn("resumed from {}: {} steps replayed, simulated time {:.1f} s", p.journal, journal->steps(),
                      world->time_ns() * 1e-9);
         c.count("resumed");
@@ -165,8 +93,6 @@ int main(int argc, char** argv) {
       std::unique_ptr<mpgc::net::UdpSender> gnss, ais, gyro, feedback;
       std::unique_ptr<mpgc::net::UdpReceiver> orders;
       sim::DeviceOrders last;  // the latest orders, from the wire (HIL) or control/actuators
-      int64_t next_gnss_ns = 0, next_own_ais_ns = 0;
-      bool watchdog = false;   // the actuator watchdog has tripped
       std::map<std::string, uint64_t> seen;
     };
     auto hil = std::make_shared<Hil>();
@@ -184,58 +110,41 @@ int main(int argc, char** argv) {
     // The actuator watchdog of the steering gear and engine control (README "Actuator watchdog"):
     // without orders the rudder goes amidships and the engine to the safe order; the next order
     // ends it. Orders come from the wire (HIL) or control/actuators (the subscription below).
-    sim::WatchdogParams wd;
-    wd.timeout_s = p.hil ? p.order_timeout : p.watchdog_timeout;
-    if (p.watchdog_engine == "reduce")
-      wd.safe_rpm = p.steerage_speed > 0.0
-                        ? std::clamp(sim::straight_rpm(world->own(), p.steerage_speed), 0.0, world->own().max_rpm())
-                        : 0.0;
-    wd.validate();
-    const std::string engine_safe = std::isnan(wd.safe_rpm) ? std::string("engine order held")
-                                                            : fmt::format("engine to at most {:.1f} rpm", wd.safe_rpm);
-    c.log().info("actuator watchdog: after {} s without an order, rudder amidships, {}", wd.timeout_s, engine_safe);
+    auto wd = std::make_shared<sim::ActuatorWatchdog>(sim::watchdog_params(p, world->own()));
+    c.log().info("actuator watchdog: after {} s without an order, rudder amidships, {}", wd->params().timeout_s,
+                 wd->engine_safe());
     // Health is the sum of what is wrong: the watchdog and the lockstep barrier each report theirs.
     auto report = [&c](const std::string& source, const std::string& detail) { c.set_problem(source, detail); };
-    auto take_orders = [&, st, world, hil, wd, engine_safe, report] {
+    auto take_orders = [&, st, world, hil, wd, report] {
       const int64_t t = world->time_ns();
       if (p.hil) {
         hil->dev->on_order_lines(hil->orders->receive_lines(), t, world->own().max_rudder(), world->own().max_rpm(), &hil->last);
         for (const auto& [k, v] : hil->dev->counters())
           if (v > hil->seen[k]) c.count("hil." + k, v - hil->seen[k]), hil->seen[k] = v;
       }
-      const bool tripped = sim::follow_orders(hil->last, t, wd, &st->cmd);
-      if (tripped == hil->watchdog) return;
-      hil->watchdog = tripped;
-      const double silent = static_cast<double>(t - hil->last.rudder_ns) * 1e-9;
-      if (tripped) {
-        const std::string what = fmt::format("actuator watchdog: no order for {:.1f} s, rudder amidships, {}", silent, engine_safe);
-        c.log().warn("{}", what);
+      const auto news = wd->update(hil->last, t, &st->cmd);
+      if (!news) return;
+      if (news->tripped) {
+        c.log().warn("{}", news->text);
         c.count("watchdog_trips");
-        report("watchdog", what);
+        report("watchdog", news->text);
       } else {
-        c.log().info("actuator watchdog: orders again, the actuators follow them");
+        c.log().info("{}", news->text);
         report("watchdog", "");
       }
     };
-    auto hil_outputs = [&, world, hil](const sim::SensorOutputs& out) {
+    auto hil_outputs = [&, st, world, hil](const sim::SensorOutputs& out) {
       const int64_t t = world->time_ns();
       const sim::ShipState& s = world->own().state();
       if (out.nav) {
         hil->gyro->send(hil->dev->gyro(*out.nav));
         hil->feedback->send(hil->dev->feedback(s.rudder, s.rpm));
-        if (t >= hil->next_gnss_ns) {
-          hil->gnss->send(hil->dev->gnss(*out.nav, t));
-          hil->next_gnss_ns = t + static_cast<int64_t>(std::llround(p.gnss_period * 1e9));
-        }
-        if (t >= hil->next_own_ais_ns) {  // the own ship's transponder: class A underway, 10 s
+        if (st->outputs.gnss_due(t)) hil->gnss->send(hil->dev->gnss(*out.nav, t));
+        if (st->outputs.own_ais_due(t))  // the own ship's transponder
           for (const auto& l : hil->dev->ais_own(cfg.own_mmsi, *out.nav, t)) hil->ais->send(l);
-          hil->next_own_ais_ns = t + 10'000'000'000;
-        }
       }
-      for (const auto& a : out.ais) {
-        const auto& tc = *std::find_if(cfg.targets.begin(), cfg.targets.end(), [&](const auto& x) { return x.mmsi == a.mmsi; });
-        for (const auto& l : hil->dev->ais_target(a, tc, t)) hil->ais->send(l);
-      }
+      for (const auto& a : out.ais)
+        for (const auto& l : hil->dev->ais_target(a, cfg.target(a.mmsi), t)) hil->ais->send(l);
     };
 
     // Sensor faults of a scenario (faults.accept): applied to what the sensors produced.
@@ -273,7 +182,7 @@ int main(int argc, char** argv) {
       }
       if (!p.hil) for (const auto& a : out.ais) {
         const auto ll = world->frame().to_latlon({a.x, a.y});
-        const auto& tc = *std::find_if(cfg.targets.begin(), cfg.targets.end(), [&](const auto& x) { return x.mmsi == a.mmsi; });
+        const auto& tc = cfg.target(a.mmsi);
         ais_w->write(msg::AisReport{header(), a.mmsi, msg::AisClass::AIS_CLASS_A, ll.lat, ll.lon, a.cog, a.sog, a.heading,
                                    a.rot, a.nav_status, a.report_time_ns, tc.length, tc.beam, tc.name, 70});
       }
@@ -283,27 +192,25 @@ int main(int argc, char** argv) {
           r.contacts.push_back({k.range, k.bearing, cfg.radar.sigma_range, cfg.radar.sigma_bearing});
         radar_w->write(r);
       }
-      if (t >= st->next_truth_ns) {
+      if (st->outputs.truth_due(t)) {
         msg::GroundTruth g{header(), to_msg(world->own_truth()), {}};
         for (const auto& tt : world->target_truth()) g.targets.push_back(to_msg(tt));
         truth_w.write(g);
-        st->next_truth_ns += static_cast<int64_t>(std::llround(p.truth_period * 1e9));
       }
       st->last_clock = msg::Clock{t, world->step_index(), world->step_ns(), lockstep && !barrier->empty()};
       barrier->begin(world->step_index());
       clock_w.write(st->last_clock);
-      st->last_progress_wall = st->step_wall = c.now_ns();
+      st->pacer.stepped(c.now_ns());
     };
 
-    auto finished = [&, world] { return p.duration > 0.0 && world->time_ns() >= static_cast<int64_t>(std::llround(p.duration * 1e9)); };
-    auto advance = [&, st, world, publish_step, finished, take_orders, journal] {
+    auto advance = [&, st, world, publish_step, take_orders, journal] {
       if (!st->started) {
         st->started = true;
         st->start_wall = c.now_ns();
         publish_step();  // step 0: the initial state
         return;
       }
-      if (finished()) {
+      if (p.finished(world->time_ns())) {
         const double wall = (c.now_ns() - st->start_wall) * 1e-9, simt = world->time_ns() * 1e-9;
         c.log().info("done: {} steps, {:.1f} s simulated in {:.2f} s wall, real-time factor {:.1f}",
                      world->step_index(), simt, wall, wall > 0 ? simt / wall : 0.0);
@@ -355,18 +262,12 @@ int main(int argc, char** argv) {
       });
       // A participant that died (its ack writer's liveliness is lost) or hangs: go on without it,
       // so the ship keeps being simulated and its watchdogs see the silence; it rejoins on restart.
-      auto drop_missing = [&, st, barrier, advance, report](const char* why) {
-        std::string names;
-        for (const auto& m : barrier->missing()) {
-          barrier->drop(m);
-          names += (names.empty() ? "" : ", ") + m;
-          c.count("lockstep.dropped");
-        }
-        if (names.empty()) return;
-        c.log().warn("lockstep: step {} goes on without [{}] ({})", st->last_clock.step, names, why);
-        std::string all;
-        for (const auto& m : barrier->absent()) all += (all.empty() ? "" : ", ") + m;
-        report("lockstep", "lockstep without [" + all + "] (" + why + ")");
+      auto drop_missing = [&, st, barrier, advance, report](const std::string& why) {
+        const auto dropped = barrier->drop_missing();
+        for (size_t i = 0; i < dropped.size(); ++i) c.count("lockstep.dropped");
+        if (dropped.empty()) return;
+        c.log().warn("lockstep: step {} goes on without [{}] ({})", st->last_clock.step, sim::join_names(dropped), why);
+        report("lockstep", sim::lockstep_problem(*barrier, why));
         if (barrier->complete()) {
           c.poll();
           advance();
@@ -375,26 +276,19 @@ int main(int argc, char** argv) {
       // Start once every participant is up (its ack writer is alive) and discovery has settled, so
       // all of them receive step 0's data: a run must not depend on who was discovered first.
       // Then resend the current Clock when an ack (or the Clock itself) was lost.
-      c.every(std::min(0.05, p.ack_timeout / 2), [&, st, barrier, advance, drop_missing] {
-        if (!st->started) {
-          if (acks.liveliness().alive_count < static_cast<uint32_t>(barrier->size())) return;
-          if (st->ready_wall == 0) st->ready_wall = c.now_ns();
-          if (c.now_ns() - st->ready_wall < static_cast<int64_t>(p.start_settle * 1e9)) return;
-          return advance();
+      c.every(st->pacer.timer_period(), [&, st, barrier, advance, drop_missing] {
+        std::string why;
+        switch (st->pacer.tick(c.now_ns(), st->started, acks.liveliness().alive_count, *barrier, &why)) {
+          case sim::LockstepPacer::Action::kWait: return;
+          case sim::LockstepPacer::Action::kStart: return advance();
+          case sim::LockstepPacer::Action::kDrop: return drop_missing(why);
+          case sim::LockstepPacer::Action::kResend: break;
         }
-        const int64_t waited = c.now_ns() - st->step_wall;
-        if (waited > static_cast<int64_t>(p.absent_after * 1e9) &&
-            acks.liveliness().alive_count < static_cast<uint32_t>(barrier->present()))
-          return drop_missing("liveliness lost");
-        if (p.hang_timeout > 0 && waited > static_cast<int64_t>(p.hang_timeout * 1e9))
-          return drop_missing("no ack within lockstep.hang_timeout");
-        if (c.now_ns() - st->last_progress_wall < static_cast<int64_t>(p.ack_timeout * 1e9)) return;
-        std::string missing;
-        for (const auto& m : barrier->missing()) missing += (missing.empty() ? "" : ", ") + m;
-        c.log().debug("step {}: no ack from [{}] within {} s, resending the clock", st->last_clock.step, missing, p.ack_timeout);
+        c.log().debug("step {}: no ack from [{}] within {} s, resending the clock", st->last_clock.step,
+                      sim::join_names(barrier->missing()), p.ack_timeout);
         c.count("lockstep.resends");
         clock_w.write(st->last_clock);
-        st->last_progress_wall = c.now_ns();
+        st->pacer.resent(c.now_ns());
       });
     }
   });

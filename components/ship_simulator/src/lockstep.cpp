@@ -35,6 +35,12 @@ bool LockstepBarrier::drop(const std::string& component) {
   return true;
 }
 
+std::vector<std::string> LockstepBarrier::drop_missing() {
+  std::vector<std::string> dropped = missing();
+  for (const auto& m : dropped) drop(m);
+  return dropped;
+}
+
 bool LockstepBarrier::complete() const {
   for (const auto& p : participants_)
     if (!absent_.count(p) && !acked_.count(p)) return false;

@@ -226,6 +226,12 @@ WorldConfig WorldConfig::from_yaml(const std::string& text, const std::string& o
   return c;
 }
 
+const TargetConfig& WorldConfig::target(uint32_t mmsi) const {
+  for (const auto& t : targets)
+    if (t.mmsi == mmsi) return t;
+  throw std::out_of_range("no target with MMSI " + std::to_string(mmsi));
+}
+
 WorldConfig WorldConfig::from_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open world file '" + path + "'");

@@ -24,6 +24,8 @@ class LockstepBarrier {
   Ack ack(const std::string& component, uint64_t step);
   // Stops waiting for a present participant; false when it is unknown or already absent.
   bool drop(const std::string& component);
+  // Drops every missing participant (a dead or hung one); returns them.
+  std::vector<std::string> drop_missing();
   bool complete() const;
   std::size_t size() const { return participants_.size(); }
   std::size_t present() const { return participants_.size() - absent_.size(); }
@@ -42,5 +44,12 @@ class LockstepBarrier {
 
 // "a, b,c" -> {"a", "b", "c"} (blanks trimmed, empty items dropped).
 std::vector<std::string> split_names(const std::string& text);
+// {"a", "b"} -> "a, b".
+template <class Names>
+std::string join_names(const Names& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
 
 }  // namespace mpgc::ship_simulator

@@ -34,6 +34,8 @@ struct WorldConfig {
   // Parses the world YAML text; every error names the key (and file/origin).
   static WorldConfig from_yaml(const std::string& text, const std::string& origin = "<string>");
   static WorldConfig from_file(const std::string& path);
+  // The target with this MMSI; throws std::out_of_range when there is none.
+  const TargetConfig& target(uint32_t mmsi) const;
 };
 
 struct TruthShip {
