@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
         mpgc::topics::kFixedObstacles, mpgc::dds::QosProfile::latched(), [c, st](const msg::FixedObstacles& m) {
           try {
             st->fixed = std::make_shared<opp::ChartObstacles>(
-                std::make_shared<const om::FixedObstacleMap>(om::map_from_msg(m)));
+                std::make_shared<const mpgc::geom::FixedObstacleMap>(om::map_from_msg(m)));
             c->log().info("fixed obstacles v{}: {} points, {} polygons", m.version, m.points.size(), m.polygons.size());
           } catch (const std::exception& e) {
             c->reject(mpgc::topics::kFixedObstacles, e.what());

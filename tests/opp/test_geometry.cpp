@@ -108,7 +108,6 @@ TEST(Geometry, MinDistanceOfLinearMotion) {
 }
 
 TEST(ChartObstacles, AgreesWithPointSetAndBlocksLand) {
-  namespace om = mpgc::obstacle_manager;
   std::mt19937_64 g(9);
   std::vector<opp::Vec2> pts;
   std::vector<mpgc::geom::Vec2> opts;
@@ -117,8 +116,8 @@ TEST(ChartObstacles, AgreesWithPointSetAndBlocksLand) {
     opts.push_back({pts.back().x, pts.back().y});
   }
   // A square island with no points inside it: only the polygon makes it an obstacle.
-  std::vector<om::Polygon> polys{{1, {{2000, 2000}, {2000, 2100}, {2100, 2100}, {2100, 2000}}}};
-  opp::ChartObstacles chart(std::make_shared<const om::FixedObstacleMap>(opts, polys));
+  std::vector<mpgc::geom::Polygon> polys{{1, {{2000, 2000}, {2000, 2100}, {2100, 2100}, {2100, 2000}}}};
+  opp::ChartObstacles chart(std::make_shared<const mpgc::geom::FixedObstacleMap>(opts, polys));
   const auto plain = opp::point_obstacles(pts);  // the same points without the island
   for (int q = 0; q < 500; ++q) {
     const opp::Vec2 a{u(g) * 1000, u(g) * 1000}, b{u(g) * 1000, u(g) * 1000};

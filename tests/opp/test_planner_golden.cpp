@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
+#include "mpgc/geom/fixed_obstacle_map.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/rrtstar.hpp"
@@ -118,13 +118,12 @@ std::vector<std::string> run_all() {
       sc.params.max_iterations = 2000;
       go("islands" + s, sc.problem, sc.params);
     }
-    {  // a chart: two land polygons and a few points, through the obstacle manager's map
-      namespace om = mpgc::obstacle_manager;
+    {  // a chart: two land polygons and a few points in the fixed-obstacle map
       opp::Scenario sc = opp::paper_scenario(1);
-      std::vector<om::Polygon> land = {{1, {{3000, 2000}, {5000, 2500}, {4500, 5000}, {2500, 4000}}},
+      std::vector<mpgc::geom::Polygon> land = {{1, {{3000, 2000}, {5000, 2500}, {4500, 5000}, {2500, 4000}}},
                                        {2, {{6500, 7500}, {8000, 6000}, {8200, 8200}}}};
       std::vector<mpgc::geom::Vec2> pts = {{5500, 5200}, {6000, 4000}, {2000, 6000}};
-      const auto chart = std::make_shared<opp::ChartObstacles>(std::make_shared<const om::FixedObstacleMap>(pts, land));
+      const auto chart = std::make_shared<opp::ChartObstacles>(std::make_shared<const mpgc::geom::FixedObstacleMap>(pts, land));
       sc.problem.fixed = chart.get();
       sc.params.seed = seed;
       sc.params.max_iterations = 2500;

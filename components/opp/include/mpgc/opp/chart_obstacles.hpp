@@ -6,14 +6,14 @@
 #include <utility>
 #include <vector>
 
-#include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
+#include "mpgc/geom/fixed_obstacle_map.hpp"
 #include "mpgc/opp/obstacles.hpp"
 
 namespace mpgc::opp {
 
 class ChartObstacles final : public FixedObstacles {
  public:
-  explicit ChartObstacles(std::shared_ptr<const obstacle_manager::FixedObstacleMap> map) : map_(std::move(map)) {}
+  explicit ChartObstacles(std::shared_ptr<const geom::FixedObstacleMap> map) : map_(std::move(map)) {}
   // Exact distance to points and polygon edges, 0 inside land.
   double nearest(Vec2 p) const override { return map_->clearance(p); }
   bool segment_clear(Vec2 a, Vec2 b, double d) const override {
@@ -22,17 +22,17 @@ class ChartObstacles final : public FixedObstacles {
     if (d > 0.0) return map_->segment_clear(a, b, d);
     return map_->segment_clearance(a, b) > 0.0;
   }
-  const obstacle_manager::FixedObstacleMap& map() const { return *map_; }
+  const geom::FixedObstacleMap& map() const { return *map_; }
 
  private:
-  std::shared_ptr<const obstacle_manager::FixedObstacleMap> map_;
+  std::shared_ptr<const geom::FixedObstacleMap> map_;
 };
 
 // A point set F (densified shore lines, point features, seed 000 §4.2) in the obstacle manager's
 // index. Throws std::invalid_argument naming a non-finite point.
 inline std::shared_ptr<ChartObstacles> point_obstacles(std::vector<Vec2> points) {
   return std::make_shared<ChartObstacles>(
-      std::make_shared<const obstacle_manager::FixedObstacleMap>(std::move(points), std::vector<obstacle_manager::Polygon>{}));
+      std::make_shared<const geom::FixedObstacleMap>(std::move(points), std::vector<geom::Polygon>{}));
 }
 
 }  // namespace mpgc::opp

@@ -6,9 +6,9 @@
 #include <limits>
 #include <vector>
 
-#include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
+#include "mpgc/geom/fixed_obstacle_map.hpp"
 
-namespace mpgc::obstacle_manager::detail {
+namespace mpgc::geom::detail {
 
 struct Segment {
   geom::Vec2 a, b;
@@ -44,4 +44,4 @@ class SegmentTree {
   std::vector<Node> nodes_;
 };
 
-}  // namespace mpgc::obstacle_manager::detail
+}  // namespace mpgc::geom::detail

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-namespace mpgc::obstacle_manager {
+namespace mpgc::geom {
 
 
 namespace detail {
@@ -217,4 +217,4 @@ bool SegmentTree::odd_crossings(geom::Vec2 p) const {
 BoxNE SegmentTree::bounds() const { return nodes_.empty() ? BoxNE{0, 0, 0, 0} : nodes_[0].box; }
 
 }  // namespace detail
-}  // namespace mpgc::obstacle_manager
+}  // namespace mpgc::geom

@@ -1,4 +1,4 @@
-#include "mpgc/obstacle_manager/fixed_obstacle_map.hpp"
+#include "mpgc/geom/fixed_obstacle_map.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "segment_tree.hpp"
 
-namespace mpgc::obstacle_manager {
+namespace mpgc::geom {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -188,9 +188,9 @@ double FixedObstacleMap::segment_clearance(geom::Vec2 a, geom::Vec2 b) const {
   return impl_->edges_and_points.min_distance(a, b);
 }
 
-}  // namespace mpgc::obstacle_manager
+}  // namespace mpgc::geom
 
-namespace mpgc::obstacle_manager {
+namespace mpgc::geom {
 
 bool FixedObstacleMap::segment_clear(geom::Vec2 a, geom::Vec2 b, double d) const {
   check_query(a, "segment_clear");
@@ -201,4 +201,4 @@ bool FixedObstacleMap::segment_clear(geom::Vec2 a, geom::Vec2 b, double d) const
   return impl_->points.empty() || points_clear(a, b, a, b, d, 0);
 }
 
-}  // namespace mpgc::obstacle_manager
+}  // namespace mpgc::geom
