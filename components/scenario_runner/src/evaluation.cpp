@@ -1,5 +1,7 @@
 #include "mpgc/scenario_runner/evaluation.hpp"
 
+#include "mpgc/geom/fixed_obstacle_map.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -33,153 +35,50 @@ void check_track(const ShipTrack& tr, const std::string& name, std::size_t n) {
 
 using geom::Vec2;
 
-// Even-odd ray casting; points on the boundary may go either way (their distance is 0 anyway).
-bool inside(Vec2 p, const Polygon& poly) {
-  bool in = false;
-  const auto& v = poly.vertices;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
-    if ((v[i].y > p.y) != (v[j].y > p.y) &&
-        p.x < (v[j].x - v[i].x) * (p.y - v[i].y) / (v[j].y - v[i].y) + v[i].x)
-      in = !in;
-  }
-  return in;
-}
-
-struct Box {
-  double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
-  void add(Vec2 p) {
-    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-  }
-  // Lower bound of the distance from anything inside `o` to anything inside this box.
-  double gap(const Box& o) const {
-    const double dx = std::max({0.0, x0 - o.x1, o.x0 - x1});
-    const double dy = std::max({0.0, y0 - o.y1, o.y0 - y1});
-    return std::hypot(dx, dy);
-  }
-};
-
-Box box_of(const Polygon& poly) {
-  Box b;
-  for (const auto& v : poly.vertices) b.add(v);
-  return b;
-}
-
-// Fixed obstacles behind a uniform grid of polygon edges, so that a query near a chart with
-// thousands of vertices looks at the few edges around the ship only.
+// The scenario's own fixed obstacles in the common fixed-obstacle map (each polygon its own
+// even-odd feature, circles of radius 0 as its points), and the circles of radius > 0 measured
+// directly. Exact: 0 inside land or on a segment that touches it.
 class ObstacleIndex {
  public:
-  explicit ObstacleIndex(const FixedObstacles& o) : obs_(&o) {
+  explicit ObstacleIndex(const FixedObstacles& o) {
+    std::vector<geom::Polygon> rings;
     for (std::size_t k = 0; k < o.polygons.size(); ++k) {
-      const auto& v = o.polygons[k].vertices;
-      boxes_.push_back(box_of(o.polygons[k]));
-      for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
-        edges_.push_back({v[j], v[i]});
-        all_.add(v[i]);
-      }
+      std::vector<Vec2> ring = o.polygons[k].vertices;
+      if (ring.size() > 3 && ring.front() == ring.back()) ring.pop_back();  // the closing vertex is optional
+      rings.push_back({static_cast<std::uint32_t>(k + 1), std::move(ring)});
     }
-    if (edges_.empty()) return;
-    // About two edges per cell on average, at most 512 x 512 cells.
-    const double w = std::max(all_.x1 - all_.x0, 1e-6), h = std::max(all_.y1 - all_.y0, 1e-6);
-    const double cells = std::clamp(static_cast<double>(edges_.size()) / 2.0, 1.0, 512.0 * 512.0);
-    cell_ = std::max(std::sqrt(w * h / cells), 1e-6);
-    nx_ = std::min<long>(512, static_cast<long>(w / cell_) + 1);
-    ny_ = std::min<long>(512, static_cast<long>(h / cell_) + 1);
-    cell_ = std::max(w / static_cast<double>(nx_), h / static_cast<double>(ny_)) * (1.0 + 1e-9);
-    grid_.resize(static_cast<std::size_t>(nx_ * ny_));
-    for (std::size_t e = 0; e < edges_.size(); ++e) {
-      Box b;
-      b.add(edges_[e].first), b.add(edges_[e].second);
-      for (long cx = cx_of(b.x0); cx <= cx_of(b.x1); ++cx)
-        for (long cy = cy_of(b.y0); cy <= cy_of(b.y1); ++cy) grid_[idx(cx, cy)].push_back(e);
-    }
-    stamp_.assign(edges_.size(), 0);
+    std::vector<Vec2> points;
+    for (const auto& c : o.circles) (c.radius > 0.0 ? discs_.push_back(c) : points.push_back(c.centre));
+    map_ = geom::FixedObstacleMap(std::move(points), std::move(rings));
   }
 
-  bool inside_any(Vec2 p) const {
-    for (std::size_t k = 0; k < boxes_.size(); ++k)
-      if (p.x >= boxes_[k].x0 && p.x <= boxes_[k].x1 && p.y >= boxes_[k].y0 && p.y <= boxes_[k].y1 &&
-          inside(p, obs_->polygons[k]))
-        return true;
-    return false;
-  }
-
-  // Distance from segment ab to the nearest polygon edge (0 when it touches one); +inf if none.
-  double edge_distance(Vec2 a, Vec2 b) const {
-    if (edges_.empty()) return kInf;
-    Box sb;
-    sb.add(a), sb.add(b);
-    double best = kInf;
-    ++query_;
-    // Search cells within r of the segment's box, doubling r until the best edge found is within r
-    // (every edge nearer than r has a point in those cells) or the whole grid has been seen.
-    for (double r = cell_;; r *= 2.0) {
-      const long x0 = cx_of(sb.x0 - r), x1 = cx_of(sb.x1 + r), y0 = cy_of(sb.y0 - r), y1 = cy_of(sb.y1 + r);
-      for (long cx = x0; cx <= x1; ++cx)
-        for (long cy = y0; cy <= y1; ++cy)
-          for (std::size_t e : grid_[idx(cx, cy)]) {
-            if (stamp_[e] == query_) continue;
-            stamp_[e] = query_;
-            best = std::min(best, geom::segment_distance(a, b, edges_[e].first, edges_[e].second));
-          }
-      const bool all = x0 == 0 && y0 == 0 && x1 == nx_ - 1 && y1 == ny_ - 1;
-      if (best <= r || all) return best;
-    }
-  }
-
-  double circles_distance(Vec2 a, Vec2 b) const {
-    double best = kInf;
-    for (const auto& c : obs_->circles)
-      best = std::min(best, std::max(0.0, geom::point_segment_distance(c.centre, a, b) - c.radius));
+  // Least distance from the segment [a, b] (a point when a == b) to any obstacle.
+  double distance(Vec2 a, Vec2 b) const {
+    double best = a == b ? map_.clearance(a) : map_.segment_clearance(a, b);
+    for (const auto& c : discs_) best = std::min(best, std::max(0.0, geom::point_segment_distance(c.centre, a, b) - c.radius));
     return best;
   }
 
-  // Exact distance from a point (full inside test).
-  double point_distance(Vec2 p) const {
-    return std::min(circles_distance(p, p), inside_any(p) ? 0.0 : edge_distance(p, p));
-  }
-
  private:
-  long cx_of(double x) const { return std::clamp(static_cast<long>(std::floor((x - all_.x0) / cell_)), 0L, nx_ - 1); }
-  long cy_of(double y) const { return std::clamp(static_cast<long>(std::floor((y - all_.y0) / cell_)), 0L, ny_ - 1); }
-  std::size_t idx(long cx, long cy) const { return static_cast<std::size_t>(cx * ny_ + cy); }
-
-  const FixedObstacles* obs_;
-  std::vector<Box> boxes_;
-  std::vector<std::pair<Vec2, Vec2>> edges_;
-  Box all_;
-  double cell_ = 1.0;
-  long nx_ = 1, ny_ = 1;
-  std::vector<std::vector<std::size_t>> grid_;
-  mutable std::vector<unsigned> stamp_;  // last query that looked at each edge
-  mutable unsigned query_ = 0;
+  geom::FixedObstacleMap map_;
+  std::vector<Circle> discs_;
 };
 
-// Walks the own ship's samples in order. A segment that touches no polygon edge cannot change
-// whether the ship is inside a polygon, so the (costly) inside test runs only at the first sample
-// and after a boundary was touched.
+// Walks the own ship's samples in order: the distance at each sample and the least distance on
+// the segment sailed from the previous one.
 class ObstacleWalker {
  public:
   explicit ObstacleWalker(const ObstacleIndex& index) : index_(index) {}
-  // Returns {distance at p, minimum distance on the segment from the previous point to p}.
   std::pair<double, double> step(Vec2 p) {
-    const double circles = index_.circles_distance(p, p);
-    if (!have_) {
-      have_ = true, last_ = p, inside_ = index_.inside_any(p);
-      const double d = std::min(circles, inside_ ? 0.0 : index_.edge_distance(p, p));
-      return {d, d};
-    }
-    const double seg_edges = index_.edge_distance(last_, p);
-    const bool was_inside = inside_;
-    if (seg_edges == 0.0) inside_ = index_.inside_any(p);
-    const double at_p = std::min(circles, inside_ ? 0.0 : index_.edge_distance(p, p));
-    const double seg = std::min(index_.circles_distance(last_, p), was_inside || inside_ ? 0.0 : seg_edges);
-    last_ = p;
+    const double at_p = index_.distance(p, p);
+    const double seg = have_ ? index_.distance(last_, p) : at_p;
+    have_ = true, last_ = p;
     return {at_p, seg};
   }
 
  private:
   const ObstacleIndex& index_;
-  bool have_ = false, inside_ = false;
+  bool have_ = false;
   Vec2 last_;
 };
 
@@ -356,15 +255,13 @@ void PassCriteria::validate() const {
 
 double distance_to_polygon(Vec2 p, const Polygon& poly) {
   if (poly.vertices.size() < 3) throw std::invalid_argument("distance_to_polygon: fewer than 3 vertices");
-  if (inside(p, poly)) return 0.0;
-  double best = kInf;
-  const auto& v = poly.vertices;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) best = std::min(best, geom::point_segment_distance(p, v[j], v[i]));
-  return best;
+  FixedObstacles one;
+  one.polygons = {poly};
+  return ObstacleIndex(one).distance(p, p);
 }
 
 double distance_to_obstacles(Vec2 p, const FixedObstacles& obs) {
-  return ObstacleIndex(obs).point_distance(p);
+  return ObstacleIndex(obs).distance(p, p);
 }
 
 std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<Vec2>& points, double tolerance) {
@@ -375,7 +272,7 @@ std::size_t add_point_obstacles(FixedObstacles& obs, const std::vector<Vec2>& po
     const ObstacleIndex index(polygons);
     for (Vec2 p : points) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw std::invalid_argument("add_point_obstacles: point is not finite");
-      if (!index.inside_any(p) && index.edge_distance(p, p) > tolerance) keep.push_back(p);
+      if (index.distance(p, p) > tolerance) keep.push_back(p);
     }
   }
   for (Vec2 p : keep) obs.circles.push_back({p, 0.0});
