@@ -8,8 +8,6 @@
 namespace mpgc::nav {
 namespace {
 
-double age_s(int64_t t, int64_t now) { return t < 0 ? INFINITY : static_cast<double>(now - t) * 1e-9; }
-
 std::string fmt1(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.1f", v);
@@ -34,11 +32,11 @@ void declare_params(rt::ParamSet& ps, JumpGateParams* p) {
 JumpGate::JumpGate(JumpGateParams p) : p_(p) { p_.validate(); }
 
 double JumpGate::reach(int64_t since, int64_t now) const {
-  return p_.max_speed * std::max(age_s(since, now), 0.0) + p_.margin;
+  return p_.max_speed * std::max(age_of(since, now), 0.0) + p_.margin;
 }
 
 JumpGate::Verdict JumpGate::check(double x, double y, int64_t t, std::string* why) {
-  if (last_t_ >= 0 && age_s(last_t_, t) <= p_.timeout) {
+  if (last_t_ >= 0 && age_of(last_t_, t) <= p_.timeout) {
     const double d = std::hypot(x - last_x_, y - last_y_);
     if (d > reach(last_t_, t)) {
       pending_ = true;

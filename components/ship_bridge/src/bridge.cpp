@@ -11,8 +11,7 @@ namespace mpgc::ship_bridge {
 
 namespace {
 
-double age_s(int64_t t, int64_t now) { return t < 0 ? INFINITY : static_cast<double>(now - t) * 1e-9; }
-bool fresh(int64_t t, int64_t now, double timeout) { return t >= 0 && age_s(t, now) <= timeout; }
+bool fresh(int64_t t, int64_t now, double timeout) { return t >= 0 && nav::age_of(t, now) <= timeout; }
 // The parameters, checked before any member is built from them.
 const NavParams& validated(const NavParams& p) {
   p.validate();

@@ -6,6 +6,8 @@
 // a single wild fix is never taken.
 #pragma once
 
+#include <cmath>
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,6 +15,11 @@
 #include "mpgc/runtime/params.hpp"
 
 namespace mpgc::nav {
+
+// [s] age at now_ns of something last heard at t_ns; +inf when never heard (t_ns < 0).
+inline double age_of(int64_t t_ns, int64_t now_ns) {
+  return t_ns < 0 ? INFINITY : static_cast<double>(now_ns - t_ns) * 1e-9;
+}
 
 struct JumpGateParams {
   double max_speed = 25.0;  // [m/s] fastest the ship can go
