@@ -94,6 +94,24 @@ TEST(ColregVerdicts, GiveWayCrossingPassingAsternIsCompliant) {
   EXPECT_TRUE(e.compliant);
 }
 
+// Rule 8(b): the 60 deg alteration is readily apparent (>= 30 deg); a 15 deg one is not, and the
+// report says so without changing the verdicts it has (reported only).
+TEST(ColregVerdicts, GiveWayAlterationIsReadilyApparentOnlyWhenLarge) {
+  const auto t = sr::synthetic::times(700, 1.0);
+  auto tgt = sail(1, 10, 2000, 2000, -kPi / 2, 7, {}, t);
+  const auto big = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{40, deg2rad(60), 7}}, t), {tgt}));
+  EXPECT_EQ(big.readily_apparent, Verdict::kPass);
+  const auto small = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{40, deg2rad(15), 7}}, t), {tgt}));
+  EXPECT_EQ(small.readily_apparent, Verdict::kFail);
+  // A speed reduction of 60 % is apparent too.
+  const auto slow = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{40, 0, 2.8}}, t), {tgt}));
+  EXPECT_EQ(slow.readily_apparent, Verdict::kPass);
+  // Stand-on: not a give-way situation.
+  const auto so = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {}, t), {sail(1, 10, 2000, -2000, kPi / 2, 7, {}, t)}));
+  EXPECT_EQ(so.situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(so.readily_apparent, Verdict::kNotApplicable);
+}
+
 TEST(ColregVerdicts, GiveWayCrossingAheadIsNotCompliant) {
   const auto t = sr::synthetic::times(700, 1.0);
   // Speeds up to 14 m/s at t = 40 s and crosses the target's line 2000 - 7 * 162.9 = 860 m ahead.

@@ -429,6 +429,10 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const E
   }
 
   using colreg::EncounterType;
+  if (e.situation == EncounterType::kHeadOn || e.situation == EncounterType::kCrossingGiveWay ||
+      e.situation == EncounterType::kOvertaking)
+    e.readily_apparent = verdict(std::max(e.max_starboard_change, e.max_port_change) >= p.delta_course_app ||
+                                 e.max_speed_reduction >= p.delta_speed_reduction_app);
   switch (e.situation) {
     case EncounterType::kHeadOn:
       // Rule 14: alter course to starboard so that each passes on the port side of the other.

@@ -159,7 +159,8 @@ struct EvaluationParams {
   double epsilon_d_course = geo::deg2rad(0.3);  // [rad/s] detectable course rate
   double delta_course_md = geo::deg2rad(2.0);   // [rad] minimum detectable course change
   double delta_speed_md = 0.2;                  // [-] minimum detectable speed change / original
-  // delta_course_app: used by the rule-8 check to come (issue 17); no verdict reads it yet.
+  // Rule 8(b): an alteration of course or speed "large enough to be readily apparent"
+  // (EncounterResult::readily_apparent; reported, not yet a verdict).
   double delta_course_app = geo::deg2rad(30.0); // [rad] readily apparent course change
   double delta_speed_reduction_app = 0.5;       // [-] readily apparent speed reduction / original
   double theta_sm_lim = geo::deg2rad(10.0);     // [rad] course change that counts as a starboard
@@ -237,6 +238,10 @@ struct EncounterResult {
   double max_starboard_change = 0.0;  // [rad] largest course change to starboard in [t_start, t_cpa]
   double max_port_change = 0.0;       // [rad] largest course change to port (positive number)
   double max_speed_reduction = 0.0;   // [-] largest speed reduction / initial speed, same window
+  // Rule 8(b), for a give-way situation (head-on, crossing give-way, overtaking): the largest
+  // course change reached delta_course_app or the speed reduction delta_speed_reduction_app.
+  // kNotApplicable otherwise. Reported only: it does not enter `compliant` (yet).
+  Verdict readily_apparent = Verdict::kNotApplicable;
 
   // Verdicts (kNotApplicable where the rule does not ask for it).
   Verdict turned_starboard = Verdict::kNotApplicable;  // head-on, crossing give-way (rules 14, 15)
