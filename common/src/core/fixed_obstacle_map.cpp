@@ -98,28 +98,25 @@ const std::vector<geom::Vec2>& FixedObstacleMap::points() const { return impl_->
 const std::vector<Polygon>& FixedObstacleMap::polygons() const { return impl_->polygons; }
 BoxNE FixedObstacleMap::bounds() const { return impl_->box; }
 
-size_t FixedObstacleMap::nearest_index(geom::Vec2 p) const {
-  check_query(p, "nearest_index");
-  if (impl_->points.empty()) return std::numeric_limits<size_t>::max();
+// The nearest point of a non-empty map: its index and squared distance.
+std::pair<size_t, double> FixedObstacleMap::nearest(geom::Vec2 p) const {
   size_t idx = 0;
   double d2 = 0;
   nanoflann::KNNResultSet<double, size_t> rs(1);
   rs.init(&idx, &d2);
   const double q[2] = {p.x, p.y};
   impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
-  return idx;
+  return {idx, d2};
+}
+
+size_t FixedObstacleMap::nearest_index(geom::Vec2 p) const {
+  check_query(p, "nearest_index");
+  return impl_->points.empty() ? std::numeric_limits<size_t>::max() : nearest(p).first;
 }
 
 double FixedObstacleMap::nearest_distance(geom::Vec2 p) const {
   check_query(p, "nearest_distance");
-  if (impl_->points.empty()) return kInf;
-  size_t idx = 0;
-  double d2 = 0;
-  nanoflann::KNNResultSet<double, size_t> rs(1);
-  rs.init(&idx, &d2);
-  const double q[2] = {p.x, p.y};
-  impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
-  return std::sqrt(d2);
+  return impl_->points.empty() ? kInf : std::sqrt(nearest(p).second);
 }
 
 std::vector<size_t> FixedObstacleMap::radius(geom::Vec2 p, double r) const {

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "mpgc/geom/vec2.hpp"
@@ -84,6 +85,7 @@ class FixedObstacleMap {
   BoxNE bounds() const;
 
  private:
+  std::pair<size_t, double> nearest(geom::Vec2 p) const;  // index and squared distance; needs points
   // No point closer than d to the query [qa, qb], looked for around its piece [a, b] (kd-tree
   // bisection).
   bool points_clear(geom::Vec2 qa, geom::Vec2 qb, geom::Vec2 a, geom::Vec2 b, double d, int depth) const;
