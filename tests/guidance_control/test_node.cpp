@@ -3,19 +3,14 @@
 #include <gtest/gtest.h>
 
 #include "mpgc/guidance_control/node.hpp"
-#include "mpgc/runtime/params.hpp"
+#include "mpgc/testing_params.hpp"
 
 namespace gc = mpgc::guidance_control;
 
 namespace {
 
-gc::NodeParams declared(std::vector<std::string> overrides = {}) {
-  gc::NodeParams p;
-  mpgc::rt::ParamSet ps;
-  gc::declare(ps, p);
-  for (const auto& o : overrides) ps.set_override(o);
-  ps.validate_and_apply();
-  return p;
+gc::NodeParams declared(const std::vector<std::string>& overrides = {}) {
+  return mpgc::testing::declared<gc::NodeParams>(gc::declare, overrides);
 }
 
 TEST(GuidanceNode, DefaultsAreTheControllersAndTheSpeedMapIsParsed) {

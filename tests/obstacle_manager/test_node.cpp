@@ -8,19 +8,15 @@
 #include <fstream>
 
 #include "mpgc/obstacle_manager/node.hpp"
-#include "mpgc/runtime/params.hpp"
+#include "mpgc/testing_params.hpp"
 
 namespace om = mpgc::obstacle_manager;
 namespace fs = std::filesystem;
 
 namespace {
 
-om::NodeParams declared(std::vector<std::string> overrides = {}) {
-  om::NodeParams p;
-  mpgc::rt::ParamSet ps;
-  om::declare(ps, p);
-  for (const auto& o : overrides) ps.set_override(o);
-  ps.validate_and_apply();
+om::NodeParams declared(const std::vector<std::string>& overrides = {}) {
+  om::NodeParams p = mpgc::testing::declared<om::NodeParams>(om::declare, overrides);
   p.validate();
   return p;
 }

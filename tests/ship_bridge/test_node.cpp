@@ -4,20 +4,15 @@
 
 #include <cmath>
 
-#include "mpgc/runtime/params.hpp"
+#include "mpgc/testing_params.hpp"
 #include "mpgc/ship_bridge/node.hpp"
 
 namespace sb = mpgc::ship_bridge;
 
 namespace {
 
-sb::NodeParams declared(std::vector<std::string> overrides = {}) {
-  sb::NodeParams p;
-  mpgc::rt::ParamSet ps;
-  p.declare(ps);
-  for (const auto& o : overrides) ps.set_override(o);
-  ps.validate_and_apply();
-  return p;
+sb::NodeParams declared(const std::vector<std::string>& overrides = {}) {
+  return mpgc::testing::declared<sb::NodeParams>([](mpgc::rt::ParamSet& ps, sb::NodeParams& p) { p.declare(ps); }, overrides);
 }
 
 TEST(BridgeNode, ParametersAndTheirChecks) {

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "mpgc/runtime/params.hpp"
-#include "mpgc/testing.hpp"
 #include "mpgc/ship_simulator/model_factory.hpp"
 #include "mpgc/ship_simulator/node.hpp"
 #include "mpgc/ship_simulator/world.hpp"
+#include "mpgc/testing.hpp"
+#include "mpgc/testing_params.hpp"
 
 namespace sim = mpgc::ship_simulator;
 
@@ -19,13 +19,8 @@ std::string world_yaml(const std::string& targets = "") {
          mpgc::testing::shared_data("ship_models") + "\", speed_kn: 12}\n" + targets;
 }
 
-sim::NodeParams declared(std::vector<std::string> overrides = {}) {
-  sim::NodeParams p;
-  mpgc::rt::ParamSet ps;
-  sim::declare(ps, p);
-  for (const auto& o : overrides) ps.set_override(o);
-  ps.validate_and_apply();
-  return p;
+sim::NodeParams declared(const std::vector<std::string>& overrides = {}) {
+  return mpgc::testing::declared<sim::NodeParams>(sim::declare, overrides);
 }
 
 TEST(SimNode, ParametersHaveTheirDefaultsAndAWorldFileIsRequired) {

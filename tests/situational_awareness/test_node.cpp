@@ -5,20 +5,15 @@
 #include <cmath>
 
 #include "mpgc/geo/angles.hpp"
-#include "mpgc/runtime/params.hpp"
+#include "mpgc/testing_params.hpp"
 #include "mpgc/situational_awareness/node.hpp"
 
 namespace sa = mpgc::sa;
 
 namespace {
 
-sa::NodeParams declared(std::vector<std::string> overrides = {}) {
-  sa::NodeParams p;
-  mpgc::rt::ParamSet ps;
-  sa::declare(ps, p);
-  for (const auto& o : overrides) ps.set_override(o);
-  ps.validate_and_apply();
-  return p;
+sa::NodeParams declared(const std::vector<std::string>& overrides = {}) {
+  return mpgc::testing::declared<sa::NodeParams>(sa::declare, overrides);
 }
 
 TEST(SaNode, ColregSectorsAreGivenInDegrees) {
