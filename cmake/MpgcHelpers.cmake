@@ -17,11 +17,14 @@ function(mpgc_add_subdirectories dir)
   endforeach()
 endfunction()
 
-# mpgc_add_gtest(NAME name SOURCES ... LIBS ... LABELS unit|integration|scenario <component> [TIMEOUT s])
+# mpgc_add_gtest(NAME name SOURCES ... LIBS ... LABELS unit|integration|scenario <component> [TIMEOUT s]
+#                [SERIAL])
+# SERIAL: ctest runs it alone (RUN_SERIAL), for closed loops at a real-time factor whose outcome a
+# second test competing for the 2 cores would change.
 # Every test runs with the loopback Cyclone configuration and finds the shared data through
 # MPGC_SHARED_DATA and the project's executables through MPGC_BIN_DIR.
 function(mpgc_add_gtest)
-  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "SERIAL" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
@@ -38,10 +41,14 @@ function(mpgc_add_gtest)
     "MPGC_BIN_DIR=${CMAKE_BINARY_DIR}/bin"
     "ASAN_OPTIONS=detect_leaks=1"
     "UBSAN_OPTIONS=print_stacktrace=1")
+  set(serial "")
+  if(T_SERIAL)
+    set(serial " RUN_SERIAL TRUE")
+  endif()
   set(props_file ${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_properties.cmake)
   file(WRITE ${props_file}
     "if(${T_NAME}_TESTS)\n"
-    "  set_tests_properties(\${${T_NAME}_TESTS} PROPERTIES LABELS \"${T_LABELS}\" TIMEOUT ${T_TIMEOUT}\n"
+    "  set_tests_properties(\${${T_NAME}_TESTS} PROPERTIES LABELS \"${T_LABELS}\" TIMEOUT ${T_TIMEOUT}${serial}\n"
     "    ENVIRONMENT \"${env}\")\n"
     "endif()\n")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${props_file})
