@@ -113,9 +113,8 @@ int main(int argc, char** argv) {
     auto wd = std::make_shared<sim::ActuatorWatchdog>(sim::watchdog_params(p, world->own()));
     c.log().info("actuator watchdog: after {} s without an order, rudder amidships, {}", wd->params().timeout_s,
                  wd->engine_safe());
-    // Health is the sum of what is wrong: the watchdog and the lockstep barrier each report theirs.
-    auto report = [&c](const std::string& source, const std::string& detail) { c.set_problem(source, detail); };
-    auto take_orders = [&, st, world, hil, wd, report] {
+    // Health is the sum of what is wrong: the watchdog and the lockstep barrier each set theirs.
+    auto take_orders = [&, st, world, hil, wd] {
       const int64_t t = world->time_ns();
       if (p.hil) {
         hil->dev->on_order_lines(hil->orders->receive_lines(), t, world->own().max_rudder(), world->own().max_rpm(), &hil->last);
@@ -127,10 +126,10 @@ int main(int argc, char** argv) {
       if (news->tripped) {
         c.log().warn("{}", news->text);
         c.count("watchdog_trips");
-        report("watchdog", news->text);
+        c.set_problem("watchdog", news->text);
       } else {
         c.log().info("{}", news->text);
-        report("watchdog", "");
+        c.set_problem("watchdog", "");
       }
     };
     auto hil_outputs = [&, st, world, hil](const sim::SensorOutputs& out) {
@@ -247,13 +246,13 @@ int main(int argc, char** argv) {
         while (!st->stopped && c.now_ns() < until);
       });
     } else {
-      auto& acks = c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance, report](const msg::StepAck& a) {
+      auto& acks = c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
         const auto r = barrier->ack(a.component, a.step);
         if (r == sim::LockstepBarrier::Ack::Unknown) c.count("lockstep.unknown_acks");
         if (r == sim::LockstepBarrier::Ack::Readmitted) {
           c.log().warn("lockstep: {} is back (ack of step {}), waiting for it again", a.component, a.step);
           c.count("lockstep.readmitted");
-          if (barrier->absent().empty()) report("lockstep", "");
+          if (barrier->absent().empty()) c.set_problem("lockstep", "");
         }
         if ((r != sim::LockstepBarrier::Ack::Counted && r != sim::LockstepBarrier::Ack::Readmitted) || !barrier->complete()) return;
         // The participants wrote their commands before their acks: read them all before stepping.
@@ -262,12 +261,12 @@ int main(int argc, char** argv) {
       });
       // A participant that died (its ack writer's liveliness is lost) or hangs: go on without it,
       // so the ship keeps being simulated and its watchdogs see the silence; it rejoins on restart.
-      auto drop_missing = [&, st, barrier, advance, report](const std::string& why) {
+      auto drop_missing = [&, st, barrier, advance](const std::string& why) {
         const auto dropped = barrier->drop_missing();
         for (size_t i = 0; i < dropped.size(); ++i) c.count("lockstep.dropped");
         if (dropped.empty()) return;
         c.log().warn("lockstep: step {} goes on without [{}] ({})", st->last_clock.step, sim::join_names(dropped), why);
-        report("lockstep", sim::lockstep_problem(*barrier, why));
+        c.set_problem("lockstep", sim::lockstep_problem(*barrier, why));
         if (barrier->complete()) {
           c.poll();
           advance();
