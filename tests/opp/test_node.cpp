@@ -9,19 +9,17 @@
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 #include "mpgc/runtime/params.hpp"
+#include "mpgc/testing_params.hpp"
 
 namespace opp = mpgc::opp;
 
 namespace {
 
-opp::NodeParams declared(std::vector<std::string> overrides = {}) {
-  opp::NodeParams p;
+// The planners' own parameters (plan.step, ...) are declared too, into planners it drops.
+opp::NodeParams declared(const std::vector<std::string>& overrides = {}) {
   std::vector<std::unique_ptr<opp::Planner>> planners;
-  mpgc::rt::ParamSet ps;
-  opp::declare(ps, p, planners);
-  for (const auto& o : overrides) ps.set_override(o);
-  ps.validate_and_apply();
-  return p;
+  return mpgc::testing::declared<opp::NodeParams>(
+      [&](mpgc::rt::ParamSet& ps, opp::NodeParams& p) { opp::declare(ps, p, planners); }, overrides);
 }
 
 TEST(OppNode, TargetsAreExtrapolatedOverTheirAge) {
