@@ -1,4 +1,4 @@
-// mpgc_obstacle_manager: chart(s) -> obstacles/fixed (latched, the region around the own ship),
+// mpgc_obstacle_manager: chart(s) -> obstacles/fixed (latched, the region around the own ship and goal),
 // sa/tracks -> obstacles/moving (every cycle). Seed 000 §2 "obstacle management", §4.2.
 // Its logic is mpgc/obstacle_manager/node.hpp and manager.hpp; this is its wiring.
 #include <cstdlib>
@@ -7,6 +7,7 @@
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
+#include "mpgc/msg/plan.hpp"
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/obstacle_manager/manager.hpp"
 #include "mpgc/obstacle_manager/msg_convert.hpp"
@@ -78,6 +79,14 @@ int main(int argc, char** argv) {
           if (const auto part = st->fixed.own_at({s.x, s.y})) publish_fixed(*part);
         },
         om::check_nav);
+
+    // The region covers the goal too: the planner counts water beyond it as unknown.
+    c->subscribe<msg::MissionGoal>(
+        mpgc::topics::kGoal, mpgc::dds::QosProfile::latched(),
+        [st, publish_fixed](const msg::MissionGoal& g) {
+          if (const auto part = st->fixed.goal_at(mpgc::geom::Vec2{g.x, g.y})) publish_fixed(*part);
+        },
+        [&p](const msg::MissionGoal& g) { return om::check_goal(g, p.domain.max_range); });
 
     c->subscribe<msg::TrackList>(mpgc::topics::kTracks, mpgc::dds::QosProfile::state(), [c, st](const msg::TrackList& l) {
       std::vector<om::TargetState> targets;

@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
       std::optional<msg::MissionGoal> goal;
       std::optional<msg::MovingObstacles> moving;
       std::shared_ptr<opp::ChartObstacles> fixed;
+      opp::Bounds region;      // what obstacles/fixed is complete for (valid with `fixed`)
+      std::string chart_wait;  // why no plan is made on this chart ("" = none)
       opp::ReplanPolicy policy;
       uint32_t plan_id = 0;
       uint32_t warm_goal = 0;
@@ -72,7 +74,7 @@ int main(int argc, char** argv) {
       mpgc::rt::WallClock wall;  // planning time and budget are wall time, also on simulated time
       mpgc::nav::JumpGate jumps;
     };
-    auto st = std::make_shared<State>(State{{}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {},
+    auto st = std::make_shared<State>(State{{}, {}, {}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {},
                                             mpgc::nav::JumpGate({p.jumps.max_speed, p.jumps.margin, p.max_state_age})});
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
@@ -111,11 +113,14 @@ int main(int argc, char** argv) {
           try {
             st->fixed = std::make_shared<opp::ChartObstacles>(
                 std::make_shared<const mpgc::geom::FixedObstacleMap>(om::map_from_msg(m)));
-            c->log().info("fixed obstacles v{}: {} points, {} polygons", m.version, m.points.size(), m.polygons.size());
+            st->region = opp::region_of(m);
+            c->log().info("fixed obstacles v{}: {} points, {} polygons in [{:.0f}, {:.0f}] x [{:.0f}, {:.0f}] m", m.version,
+                          m.points.size(), m.polygons.size(), m.region_min_x, m.region_max_x, m.region_min_y, m.region_max_y);
           } catch (const std::exception& e) {
             c->reject(mpgc::topics::kFixedObstacles, e.what());
           }
-        });
+        },
+        opp::check_fixed);
 
     c->every(p.check_period, [c, st, &p, planner, path_out, enc_out, memory_out] {
       if (!st->own || !st->goal) return;
@@ -137,22 +142,33 @@ int main(int argc, char** argv) {
       if (stale != st->stale) {
         st->stale = stale;
         if (!stale.empty()) c->log().warn("not planning: {}", stale);
-        c->set_health(stale.empty() ? msg::HealthState::HEALTH_OK : msg::HealthState::HEALTH_DEGRADED,
-                      stale.empty() ? "" : "not planning: " + stale);
+        c->set_problem("inputs", stale.empty() ? "" : "not planning: " + stale);
       }
       if (!stale.empty()) return;
       std::vector<opp::TrackReport> tracks;
       if (st->moving)
-        for (const auto& o : st->moving->obstacles) tracks.push_back({o.id, {o.x, o.y}, {o.vx, o.vy}});
-      const std::vector<opp::Target> targets =
-          opp::targets_at(tracks, st->moving ? mpgc::rt::seconds_between(now_ns, st->moving->t_valid_ns) : 0.0);
+        for (const auto& o : st->moving->obstacles) tracks.push_back({o.id, {o.x, o.y}, {o.vx, o.vy}, o.position_std});
+      const std::vector<opp::Target> targets = opp::targets_at(
+          tracks, st->moving ? mpgc::rt::seconds_between(now_ns, st->moving->t_valid_ns) : 0.0, p.target_sigmas);
       const std::string why = st->policy.due(now, goal.goal_id, targets);
       if (why.empty()) return;
       opp::Setup setup = opp::build_setup(
           p, {{own.x, own.y}, own.heading, own.sog, own.cog, own_age},
           {{goal.x, goal.y}, goal.heading, goal.heading_tolerance, goal.cruise_speed, goal.safety_distance, goal.colreg},
-          targets, st->fixed.get(), st->plan_id);
+          targets, st->fixed ? opp::ChartView{st->fixed.get(), st->region} : opp::ChartView{}, st->plan_id);
       const opp::Problem& pb = setup.problem;
+      // Water beyond the charted region is unknown: wait (the plan stays due) until the obstacle
+      // manager publishes a region that covers the goal; guidance keeps the last plan meanwhile.
+      const std::string wait = opp::chart_wait(p, setup, st->fixed != nullptr);
+      if (wait != st->chart_wait) {
+        st->chart_wait = wait;
+        if (!wait.empty()) c->log().warn("not planning: {}", wait);
+        c->set_problem("chart", wait.empty() ? "" : "not planning: " + wait);
+      }
+      if (!wait.empty()) {
+        c->count("skipped.chart");
+        return;
+      }
       if (setup.arrived) {
         c->count("skipped.arrived");
         st->policy.planned(now, goal.goal_id, targets);

@@ -32,14 +32,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   om::DomainParams dp;
   dp.tentative = r.flag();
   const om::ObstacleSet& set = chart();
-  const om::BoxNE bounds = om::FixedObstacleMap({}, set.polygons).bounds();
   for (int i = 0; i < 16 && !r.empty(); ++i) {
     if (r.flag()) {
       const msg::NavState s = fz::nav_state(r);
       if (!om::check_nav(s).empty()) continue;
       const mpgc::geom::Vec2 own{s.x, s.y};
+      if (r.flag()) {
+        const msg::MissionGoal g = fz::goal(r);
+        if (om::check_goal(g, dp.max_range).empty()) region.set_goal(mpgc::geom::Vec2{g.x, g.y});
+      }
       if (region.needs_update(own)) {
-        const om::BoxNE box = region.publish(own, bounds);
+        const om::BoxNE box = region.publish(own);
         if (!region.whole_chart()) (void)om::crop(set, box);
       }
     } else {

@@ -51,20 +51,34 @@ TEST(Shapes, MalformedShapesNameTheShape) {
 TEST(Region, RepublishesAfterMovingFarEnoughOrChartChange) {
   om::RegionPolicy r({1000.0, 200.0});
   EXPECT_TRUE(r.needs_update({0, 0}));
-  const auto box = r.publish({0, 0}, {});
+  const auto box = r.publish({0, 0});
   EXPECT_EQ(box.min_x, -1000.0);
   EXPECT_EQ(box.max_y, 1000.0);
   EXPECT_FALSE(r.needs_update({150, 100}));  // 180 m
   EXPECT_TRUE(r.needs_update({150, 150}));   // 212 m
-  r.publish({150, 150}, {});
+  r.publish({150, 150});
   EXPECT_FALSE(r.needs_update({150, 150}));
   r.chart_changed();
   EXPECT_TRUE(r.needs_update({150, 150}));
+  r.publish({150, 150});
+  // A goal: the box covers it too, half_size beyond (the planner counts water beyond as unknown).
+  r.set_goal(mpgc::geom::Vec2{5000, -3000});
+  EXPECT_TRUE(r.needs_update({150, 150}));
+  const auto both = r.publish({150, 150});
+  EXPECT_EQ(both.min_x, -850.0);
+  EXPECT_EQ(both.max_x, 6000.0);
+  EXPECT_EQ(both.min_y, -4000.0);
+  EXPECT_EQ(both.max_y, 1150.0);
+  r.set_goal(mpgc::geom::Vec2{5000, -3000});  // the same goal again: nothing to do
+  EXPECT_FALSE(r.needs_update({150, 150}));
   EXPECT_THROW(om::RegionPolicy({1000.0, 1000.0}), std::invalid_argument);
   EXPECT_THROW(om::RegionPolicy({-1.0, 10.0}), std::invalid_argument);
   om::RegionPolicy whole({0.0, 10.0});
   EXPECT_TRUE(whole.needs_update({0, 0}));
-  EXPECT_EQ(whole.publish({5, 5}, {-3, -4, 7, 8}).min_y, -4.0);
+  // The whole chart is taken as complete: an infinite region, whatever the goal.
+  EXPECT_EQ(whole.publish({5, 5}).min_y, -std::numeric_limits<double>::infinity());
+  EXPECT_FALSE(whole.needs_update({1e5, 1e5}));
+  whole.set_goal(mpgc::geom::Vec2{1e5, 0});
   EXPECT_FALSE(whole.needs_update({1e5, 1e5}));
 }
 

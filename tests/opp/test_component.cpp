@@ -1,6 +1,7 @@
 // Integration over DDS (own domain, loopback): the real mpgc_opp process plans seed 000 scenario 1
-// from own state, goal and moving obstacles, publishes plan/path (latched) and plan/encounters,
-// and re-plans at once when the goal changes.
+// from own state, goal, moving obstacles and a chart's region, publishes plan/path (latched) and
+// plan/encounters, and re-plans at once when the goal changes. Without a chart covering the goal it
+// waits and says so on health.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -14,6 +15,7 @@
 #include <thread>
 
 #include "mpgc/dds/dds.hpp"
+#include "mpgc/msg/core.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
 #include "mpgc/msg/plan.hpp"
@@ -41,7 +43,8 @@ using mpgc::testing::wait_for;
 TEST(OppProcess, PlansScenario1AndReplansOnNewGoal) {
   const int domain = mpgc::testing::unique_domain();
   Process proc({mpgc::testing::bin_dir() + "/mpgc_opp", "--domain", std::to_string(domain), "--set", "replan.period=60",
-                "--set", "plan.max_iterations=8000", "--set", "plan.time_budget=2", "--log-level", "warn"});
+                "--set", "plan.max_iterations=8000", "--set", "plan.time_budget=2", "--set", "health.period=0.2",
+                "--log-level", "warn"});
   dds::Participant part(static_cast<uint32_t>(domain));
   dds::Topic<msg::NavState> nav_t(part, mpgc::topics::kOwnState);
   dds::Topic<msg::MissionGoal> goal_t(part, mpgc::topics::kGoal);
@@ -53,6 +56,10 @@ TEST(OppProcess, PlansScenario1AndReplansOnNewGoal) {
   dds::Writer<msg::MovingObstacles> mov_w(part, mov_t, dds::QosProfile::state());
   dds::Reader<msg::Path> path_r(part, path_t, dds::QosProfile::latched());
   dds::Reader<msg::EncounterList> enc_r(part, enc_t, dds::QosProfile::latched());
+  dds::Topic<msg::FixedObstacles> fixed_t(part, mpgc::topics::kFixedObstacles);
+  dds::Writer<msg::FixedObstacles> fixed_w(part, fixed_t, dds::QosProfile::latched());
+  dds::Topic<msg::ComponentHealth> health_t(part, mpgc::topics::kHealth);
+  dds::Reader<msg::ComponentHealth> health_r(part, health_t, dds::QosProfile::latched());
 
   // Seed 000 scenario 1 with Lpp = 100 m and 6 m/s everywhere.
   std::atomic<bool> stop{false};
@@ -91,7 +98,26 @@ TEST(OppProcess, PlansScenario1AndReplansOnNewGoal) {
   g.colreg = true;
   goal_w.write(g);
 
+  // No chart yet: the water is unknown, so no plan; health says why. Then a region that ends 500 m
+  // beyond the goal (inside d_safety of its edge): still none. Then one that covers it: a plan.
+  auto degraded_with = [&](const std::string& what) {
+    msg::ComponentHealth h;
+    return wait_for(health_r, h, [&](const msg::ComponentHealth& x) {
+      return x.component == "opp" && x.state == msg::HealthState::HEALTH_DEGRADED && x.detail.find(what) != std::string::npos;
+    }, 10.0);
+  };
+  EXPECT_TRUE(degraded_with("no chart yet"));
+  msg::FixedObstacles chart{};
+  chart.version = 1;
+  chart.region_min_x = chart.region_min_y = -5000.0;
+  chart.region_max_x = chart.region_max_y = 10500.0;
+  fixed_w.write(chart);
+  EXPECT_TRUE(degraded_with("goal outside the charted region"));
   msg::Path p;
+  EXPECT_FALSE(wait_for(path_r, p, [](const msg::Path& x) { return x.goal_id == 1; }, 1.0));
+  chart.version = 2;
+  chart.region_max_x = chart.region_max_y = 15000.0;
+  fixed_w.write(chart);
   ASSERT_TRUE(wait_for(path_r, p, [](const msg::Path& x) { return x.goal_id == 1; }, 20.0));
   EXPECT_TRUE(p.status == msg::PlanStatus::PLAN_OK || p.status == msg::PlanStatus::PLAN_RELAXED) << p.reason;
   if (p.status == msg::PlanStatus::PLAN_OK) {

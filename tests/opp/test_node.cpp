@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "mpgc/opp/node.hpp"
 #include "mpgc/opp/registry.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
+#include "mpgc/opp/validity.hpp"
 #include "mpgc/runtime/params.hpp"
 #include "mpgc/testing_params.hpp"
 
@@ -23,20 +25,84 @@ opp::NodeParams declared(const std::vector<std::string>& overrides = {}) {
 }
 
 TEST(OppNode, TargetsAreExtrapolatedOverTheirAge) {
-  const auto t = opp::targets_at({{7, {100, 200}, {2, -1}}, {9, {0, 0}, {0, 0}}}, 10.0);
+  const auto t = opp::targets_at({{7, {100, 200}, {2, -1}, 30.0}, {9, {0, 0}, {0, 0}, std::nan("")}}, 10.0, 2.0);
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[0].id, 7u);
   EXPECT_DOUBLE_EQ(t[0].p.x, 120);
   EXPECT_DOUBLE_EQ(t[0].p.y, 190);
   EXPECT_DOUBLE_EQ(t[0].v.x, 2);
   EXPECT_EQ(t[0].pinned.obligation, opp::Obligation::kNone);
+  EXPECT_DOUBLE_EQ(t[0].margin, 60.0);  // 2 sigma
+  EXPECT_DOUBLE_EQ(t[1].margin, 0.0);   // a NaN sigma adds nothing rather than poisoning the check
+}
+
+// A target whose track went unmeasured (its sigma grown by the obstacle manager) is passed wider:
+// a path that keeps d_safety from it but not d_safety + 2 sigma is invalid, and the planner's path
+// keeps the wider clearance.
+TEST(OppNode, AGrownUncertaintyWidensTheClearanceOfThatTarget) {
+  opp::Problem pb;
+  pb.start = {0, 0};
+  pb.heading = 0;
+  pb.speed = 5;
+  pb.goal.p = {8000, 0};
+  pb.bounds = {-3000, -4000, 11000, 4000};
+  // Stationary, 1050 m abeam of the straight line.
+  pb.targets = {{1, {4000, 1050}, {0, 0}, {}, 0.0}};
+  opp::ConstraintParams c;
+  const std::vector<opp::Vec2> straight = {{0, 0}, {8000, 0}};
+  EXPECT_EQ(opp::ValidityChecker(pb, c).check_path(straight, false), "");
+  pb.targets[0].margin = 2 * 40.0;  // sigma 40 m after a silence
+  EXPECT_NE(opp::ValidityChecker(pb, c).check_path(straight, false).find("target"), std::string::npos);
+  opp::Params prm;
+  prm.max_iterations = 3000;
+  const opp::Result r = opp::plan(pb, prm);
+  ASSERT_FALSE(r.path.empty()) << r.reason;
+  std::vector<opp::Vec2> pts;
+  for (const auto& w : r.path) pts.push_back(w.p);
+  EXPECT_EQ(opp::ValidityChecker(pb, c).check_path(pts, false), "");
+  double dmin = 1e18;
+  for (size_t i = 0; i + 1 < pts.size(); ++i)
+    dmin = std::min(dmin, mpgc::geom::point_segment_distance(pb.targets[0].p, pts[i], pts[i + 1]));
+  EXPECT_GE(dmin, 1080.0 - 1e-6);
+}
+
+// Beyond the region obstacles/fixed was published for, the water is unknown: no leg comes within
+// d_safety of the region's edge, a goal it does not cover makes the node wait, and no chart at all
+// makes it wait unless plan.require_chart is off.
+TEST(OppNode, WaterBeyondTheChartedRegionIsUnknown) {
+  const opp::NodeParams p = declared();
+  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
+  const opp::GoalSpec goal{{8000, 0}, std::nan(""), 0, 5, 1000, true};
+  opp::NoFixedObstacles water;
+  // The region ends 1500 m north of the straight line's end... and the goal is 800 m from its edge.
+  const opp::Setup near_edge = opp::build_setup(p, own, goal, {}, {&water, opp::Bounds{-5000, -5000, 8800, 5000}}, 0);
+  EXPECT_NE(opp::chart_wait(p, near_edge, true).find("goal outside the charted region"), std::string::npos);
+  EXPECT_NE(opp::check_problem(near_edge.problem, near_edge.constraints).find("charted region"), std::string::npos);
+  EXPECT_EQ(opp::chart_wait(p, near_edge, false), "no chart yet (obstacles/fixed)");
+  EXPECT_EQ(opp::chart_wait(declared({"plan.require_chart=false"}), near_edge, false), "");
+
+  // A region with room for the goal: the sampling box is cut to it, and the path keeps d_safety
+  // from its southern edge (at y = -600 the straight line is fine, a detour south is not).
+  const opp::Setup s = opp::build_setup(p, own, goal, {}, {&water, opp::Bounds{-5000, -1100, 12000, 5000}}, 0);
+  EXPECT_EQ(opp::chart_wait(p, s, true), "");
+  EXPECT_DOUBLE_EQ(s.problem.bounds.min_y, -1100);
+  const opp::ValidityChecker v(s.problem, s.constraints);
+  EXPECT_EQ(v.check_path({{0, 0}, {8000, 0}}, false), "");
+  EXPECT_NE(v.check_path({{0, 0}, {4000, -500}, {8000, 0}}, false).find("unknown water"), std::string::npos);
+  EXPECT_DOUBLE_EQ(v.fixed_clearance({4000, -600}), 500);
+  // A chart published whole (infinite region) is complete everywhere.
+  const double inf = std::numeric_limits<double>::infinity();
+  const opp::Setup whole = opp::build_setup(p, own, goal, {}, {&water, opp::Bounds{-inf, -inf, inf, inf}}, 0);
+  EXPECT_EQ(opp::chart_wait(p, whole, true), "");
+  EXPECT_EQ(opp::check_problem(whole.problem, whole.constraints), "");
+  EXPECT_DOUBLE_EQ(whole.problem.bounds.min_y, -3000);
 }
 
 TEST(OppNode, SetupDeadReckonsTheOwnShipAndTakesTheGoalsSpeedAndSafetyDistance) {
   opp::NodeParams p = declared();
   const opp::OwnReport own{{1000, 2000}, 0.1, 4.0, 0.0, 5.0};  // 4 m/s due north, 5 s old
   opp::GoalSpec goal{{9000, 2000}, std::nan(""), 0.3, 6.0, 1500.0, true};
-  const opp::Setup s = opp::build_setup(p, own, goal, {}, nullptr, 3);
+  const opp::Setup s = opp::build_setup(p, own, goal, {}, {}, 3);
   EXPECT_DOUBLE_EQ(s.problem.start.x, 1020);
   EXPECT_DOUBLE_EQ(s.problem.start.y, 2000);
   EXPECT_DOUBLE_EQ(s.problem.heading, 0.1);
@@ -53,14 +119,14 @@ TEST(OppNode, SetupDeadReckonsTheOwnShipAndTakesTheGoalsSpeedAndSafetyDistance) 
 
   goal.cruise_speed = 0;
   goal.safety_distance = 5000;  // beyond d_COLREG: d_COLREG follows it
-  EXPECT_DOUBLE_EQ(opp::build_setup(p, own, goal, {}, nullptr, 0).problem.speed, 4.0);  // own speed
-  EXPECT_DOUBLE_EQ(opp::build_setup(p, own, goal, {}, nullptr, 0).constraints.colreg_distance, 5000);
+  EXPECT_DOUBLE_EQ(opp::build_setup(p, own, goal, {}, {}, 0).problem.speed, 4.0);  // own speed
+  EXPECT_DOUBLE_EQ(opp::build_setup(p, own, goal, {}, {}, 0).constraints.colreg_distance, 5000);
   const opp::OwnReport stopped{{1000, 2000}, 0.1, std::nan(""), std::nan(""), 5.0};
-  const opp::Setup s2 = opp::build_setup(p, stopped, goal, {}, nullptr, 0);
+  const opp::Setup s2 = opp::build_setup(p, stopped, goal, {}, {}, 0);
   EXPECT_DOUBLE_EQ(s2.problem.start.x, 1000);             // unknown speed: no dead reckoning
   EXPECT_DOUBLE_EQ(s2.problem.speed, p.default_speed);
   goal.p = {1050, 2000};
-  EXPECT_TRUE(opp::build_setup(p, own, goal, {}, nullptr, 0).arrived);
+  EXPECT_TRUE(opp::build_setup(p, own, goal, {}, {}, 0).arrived);
 }
 
 TEST(OppNode, EncounterParamsAndReportsUseTheRuleSectors) {
@@ -68,7 +134,7 @@ TEST(OppNode, EncounterParamsAndReportsUseTheRuleSectors) {
   const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
   // A target dead ahead on the reciprocal course: head-on; and one with a NaN velocity.
   std::vector<opp::Target> tg = {{4, {2500, 10}, {-5, 0}, {}}, {5, {3000, 3000}, {std::nan(""), 0}, {}}};
-  const opp::Setup s = opp::build_setup(p, own, {{20000, 0}, std::nan(""), 0, 5, 0, true}, tg, nullptr, 0);
+  const opp::Setup s = opp::build_setup(p, own, {{20000, 0}, std::nan(""), 0, 5, 0, true}, tg, {}, 0);
   const opp::EncounterMemoryParams ep = opp::encounter_params(p, s);
   EXPECT_DOUBLE_EQ(ep.cpa_risk, 1500);
   EXPECT_DOUBLE_EQ(ep.tcpa_max, 20000.0 / 5.0);  // the straight-line time to the goal

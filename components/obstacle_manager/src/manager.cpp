@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <sstream>
 #include <vector>
@@ -77,11 +78,23 @@ bool RegionPolicy::needs_update(geom::Vec2 own) const {
   return std::hypot(own.x - centre_->x, own.y - centre_->y) > p_.republish_distance;
 }
 
-BoxNE RegionPolicy::publish(geom::Vec2 own, const BoxNE& chart_bounds) {
+void RegionPolicy::set_goal(std::optional<geom::Vec2> goal) {
+  const bool same = goal.has_value() == goal_.has_value() && (!goal || (goal->x == goal_->x && goal->y == goal_->y));
+  if (same) return;
+  goal_ = goal;
+  if (!whole_chart()) dirty_ = true;
+}
+
+BoxNE RegionPolicy::publish(geom::Vec2 own) {
   centre_ = own;
   dirty_ = false;
-  if (whole_chart()) return chart_bounds;
-  return {own.x - p_.half_size, own.y - p_.half_size, own.x + p_.half_size, own.y + p_.half_size};
+  if (whole_chart()) {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {-inf, -inf, inf, inf};
+  }
+  const geom::Vec2 g = goal_.value_or(own);
+  return {std::min(own.x, g.x) - p_.half_size, std::min(own.y, g.y) - p_.half_size,
+          std::max(own.x, g.x) + p_.half_size, std::max(own.y, g.y) + p_.half_size};
 }
 
 void DomainParams::validate() const {

@@ -115,13 +115,12 @@ FixedFeed::FixedFeed(const NodeParams& p, const geo::LocalNed& frame, std::vecto
 
 void FixedFeed::set_chart(ObstacleSet s) {
   chart_ = std::move(s);
-  bounds_ = chart_bounds(chart_);
   region_.chart_changed();
 }
 
 FixedFeed::Part FixedFeed::publish(geom::Vec2 centre) {
   Part part;
-  part.box = region_.publish(centre, bounds_);
+  part.box = region_.publish(centre);
   part.obstacles = region_.whole_chart() ? chart_ : crop(chart_, part.box);
   part.version = ++version_;
   return part;
@@ -131,6 +130,12 @@ std::optional<FixedFeed::Part> FixedFeed::own_at(geom::Vec2 own) {
   own_ = own;
   if (!region_.needs_update(own)) return std::nullopt;
   return publish(own);
+}
+
+std::optional<FixedFeed::Part> FixedFeed::goal_at(std::optional<geom::Vec2> goal) {
+  region_.set_goal(goal);
+  if (!own_ || !region_.needs_update(*own_)) return std::nullopt;
+  return publish(*own_);
 }
 
 std::optional<FixedFeed::Part> FixedFeed::at_start() {

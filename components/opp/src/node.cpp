@@ -46,6 +46,11 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
   ps.add("plan.max_obstacle_age", &p.max_obstacle_age, 10.0, "s", 0.1, 600.0,
          "moving obstacles older than this (obstacle_manager publishes every 0.5 s) are not extrapolated: no plan "
          "until fresh ones come (guidance keeps the last plan, then slows to steerage speed)");
+  ps.add("plan.target_sigmas", &p.target_sigmas, 2.0, "-", 0.0, 10.0,
+         "a target is kept d_safety + this many position sigmas away (obstacles/moving position_std, which grows "
+         "while the target is not measured)");
+  ps.add("plan.require_chart", &p.require_chart, true,
+         "no plan until obstacles/fixed gave the charted region (false: open water everywhere while none came)");
   ps.add("plan.warm_start", &p.warm_start, true, "re-use the previous path of the same goal");
   ps.add("plan.pin_encounters", &p.pin_encounters, true,
          "fix each target's COLREG obligation when the risk of collision appears (encounters.hpp); false: per leg (§5)");
@@ -71,15 +76,19 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
   }
 }
 
-std::vector<Target> targets_at(const std::vector<TrackReport>& tracks, double dt) {
+std::vector<Target> targets_at(const std::vector<TrackReport>& tracks, double dt, double sigmas) {
   std::vector<Target> out;
   out.reserve(tracks.size());
-  for (const TrackReport& t : tracks) out.push_back({t.id, {t.p.x + t.v.x * dt, t.p.y + t.v.y * dt}, t.v});
+  for (const TrackReport& t : tracks) {
+    Target g{t.id, {t.p.x + t.v.x * dt, t.p.y + t.v.y * dt}, t.v, {}, 0.0};
+    if (std::isfinite(t.position_std) && t.position_std > 0.0) g.margin = sigmas * t.position_std;
+    out.push_back(g);
+  }
   return out;
 }
 
 Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goal, std::vector<Target> targets,
-                  const FixedObstacles* fixed, uint32_t plan_index) {
+                  const ChartView& chart, uint32_t plan_index) {
   Setup s;
   Problem& pb = s.problem;
   // The own ship at the planning time, dead-reckoned over the report's age.
@@ -96,7 +105,9 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
   const double m = p.bounds_margin;
   pb.bounds = {std::min(pb.start.x, pb.goal.p.x) - m, std::min(pb.start.y, pb.goal.p.y) - m,
                std::max(pb.start.x, pb.goal.p.x) + m, std::max(pb.start.y, pb.goal.p.y) + m};
-  pb.fixed = fixed;
+  pb.fixed = chart.obstacles;
+  pb.charted = chart.region;
+  if (chart.region) pb.bounds = pb.bounds.intersect(*chart.region);  // nothing to sample beyond it
   pb.targets = std::move(targets);
   pb.colreg = goal.colreg;
   s.constraints = p.constraints;
@@ -106,6 +117,17 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
   s.budget.seed = static_cast<uint64_t>(p.seed) + plan_index;
   s.own = colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
   return s;
+}
+
+std::string chart_wait(const NodeParams& p, const Setup& s, bool have_chart) {
+  if (!have_chart) return p.require_chart ? "no chart yet (obstacles/fixed)" : "";
+  const Problem& pb = s.problem;
+  if (!pb.charted) return "";
+  const Bounds& r = *pb.charted;
+  if (r.contains(pb.start) && r.contains_by(pb.goal.p, s.constraints.safety_distance)) return "";
+  return std::string(r.contains(pb.start) ? "goal" : "own ship") + " outside the charted region [" + fmt(r.min_x) +
+         ", " + fmt(r.max_x) + "] x [" + fmt(r.min_y) + ", " + fmt(r.max_y) + "] m or within d_safety (" +
+         fmt(s.constraints.safety_distance) + " m) of its edge";
 }
 
 EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {

@@ -60,11 +60,25 @@ std::string check_problem(const Problem& pb, const ConstraintParams& c) {
     return "sampling bounds are empty or not finite";
   if (!b.contains(pb.start)) return "start lies outside the sampling bounds";
   if (!b.contains(pb.goal.p)) return "goal lies outside the sampling bounds";
+  if (pb.charted) {
+    const Bounds& r = *pb.charted;
+    if (std::isnan(r.min_x) || std::isnan(r.min_y) || std::isnan(r.max_x) || std::isnan(r.max_y) ||
+        !(r.max_x > r.min_x) || !(r.max_y > r.min_y))
+      return "charted region is empty or NaN";
+    // Unknown water beyond the region counts as land: the start may be closer (it is where the
+    // ship is; its first leg keeps what it has), the goal may not.
+    if (!r.contains(pb.start)) return "start lies outside the charted region (the water there is unknown)";
+    if (!r.contains_by(pb.goal.p, c.safety_distance))
+      return "goal lies outside the charted region or within d_safety (" + fmt(c.safety_distance) +
+             " m) of its edge: the water beyond it is unknown";
+  }
   if (pb.targets.size() > 10000) return "too many targets (" + std::to_string(pb.targets.size()) + " > 10000)";
   for (size_t i = 0; i < pb.targets.size(); ++i) {
     const Target& t = pb.targets[i];
     if (!finite(t.p) || !finite(t.v))
       return "target " + std::to_string(i) + " (id " + std::to_string(t.id) + ") has a non-finite position or velocity";
+    if (!(t.margin >= 0.0) || !std::isfinite(t.margin))
+      return "target " + std::to_string(i) + " (id " + std::to_string(t.id) + ") has a margin that is not finite and >= 0";
   }
   if (pb.fixed) {
     const double ds = pb.fixed->nearest(pb.start);
@@ -76,10 +90,10 @@ std::string check_problem(const Problem& pb, const ConstraintParams& c) {
              fmt(c.safety_distance) + " m)";
   }
   for (size_t i = 0; i < pb.targets.size() && !c.escape_start; ++i) {
-    const double d = norm(pb.targets[i].p - pb.start);
-    if (d < c.safety_distance)
+    const double d = norm(pb.targets[i].p - pb.start), need = c.safety_distance + pb.targets[i].margin;
+    if (d < need)
       return "start is within the safety distance of target " + std::to_string(i) + " (id " +
-             std::to_string(pb.targets[i].id) + "): " + fmt(d) + " m < " + fmt(c.safety_distance) + " m";
+             std::to_string(pb.targets[i].id) + "): " + fmt(d) + " m < " + fmt(need) + " m";
   }
   return "";
 }

@@ -584,9 +584,10 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
                      : "no COLREG-compliant path within the compliant budget share; constraint relaxed";
   if (params.escape_start) {
     std::string inside;
-    if (problem.fixed && problem.fixed->nearest(problem.start) < params.safety_distance) inside = "a fixed obstacle";
+    if (checker.fixed_clearance(problem.start) < params.safety_distance) inside = "a fixed obstacle or the chart's edge";
     for (const Target& t : problem.targets)
-      if (inside.empty() && norm(t.p - problem.start) < params.safety_distance) inside = "target id " + std::to_string(t.id);
+      if (inside.empty() && norm(t.p - problem.start) < params.safety_distance + t.margin)
+        inside = "target id " + std::to_string(t.id);
     if (!inside.empty())
       res.reason += std::string(res.reason.empty() ? "" : "; ") + "start within d_safety of " + inside +
                     ": the first leg only keeps its initial distance (escape)";

@@ -12,12 +12,20 @@ constexpr double kPi = 3.14159265358979323846;
 ValidityChecker::ValidityChecker(const Problem& pb, const ConstraintParams& c) : pb_(pb), c_(c) {
   fixed_ = pb.fixed ? pb.fixed : &none_;
   cos_turn_ = c.max_turn >= kPi ? -2.0 : std::cos(c.max_turn);
-  ds2_ = c.safety_distance * c.safety_distance;
   dc2_ = c.colreg_distance * c.colreg_distance;
   inv_u_ = 1.0 / pb.speed;
   goal_any_heading_ = !std::isfinite(pb.goal.heading) || pb.goal.heading_tolerance >= kPi;
   start_fixed_d_ = c.safety_distance;
-  if (c.escape_start && pb.fixed) start_fixed_d_ = std::min(c.safety_distance, pb.fixed->nearest(pb.start) * (1.0 - 1e-9));
+  if (c.escape_start) start_fixed_d_ = std::min(c.safety_distance, fixed_clearance(pb.start) * (1.0 - 1e-9));
+}
+
+double ValidityChecker::fixed_clearance(Vec2 p) const {
+  double d = fixed_->nearest(p);
+  if (pb_.charted) {
+    const Bounds& r = *pb_.charted;
+    d = std::min(d, std::max(0.0, std::min({p.x - r.min_x, r.max_x - p.x, p.y - r.min_y, r.max_y - p.y})));
+  }
+  return d;
 }
 
 bool ValidityChecker::goal_heading_ok(Vec2 seg) const {
@@ -35,7 +43,8 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
   for (const Target& tg : pb_.targets) {
     const Vec2 y = tg.p + ta * tg.v;
     const Vec2 r0 = a - y;
-    const double lim = escape ? std::min(ds2_, norm2(r0) * (1.0 - 1e-9)) : ds2_;
+    const double ds = c_.safety_distance + tg.margin;
+    const double lim = escape ? std::min(ds * ds, norm2(r0) * (1.0 - 1e-9)) : ds * ds;
     if (geom::closest_approach(r0, vel - tg.v, T).dist2 < lim) return kTarget;  // eq. 3-4
     const bool pinned = tg.pinned.obligation != Obligation::kNone;
     if (level == ColregLevel::kNone || (level == ColregLevel::kPinned && !pinned)) continue;
@@ -65,8 +74,8 @@ std::string ValidityChecker::check_path(const std::vector<Vec2>& path, bool colr
     if (!turn_ok(dir, seg, len, i == 0)) return leg + "turning angle exceeds max_turn (eq. 2)";
     const bool esc = i == 0 && c_.escape_start;
     // A path checked from its own first point: the escape distance is that point's.
-    const double dfix = esc ? std::min(c_.safety_distance, fixed_->nearest(a) * (1.0 - 1e-9)) : c_.safety_distance;
-    if (!fixed_clear(a, b, dfix)) return leg + "closer than d_safety to a fixed obstacle";
+    const double dfix = esc ? std::min(c_.safety_distance, fixed_clearance(a) * (1.0 - 1e-9)) : c_.safety_distance;
+    if (!fixed_clear(a, b, dfix)) return leg + "closer than d_safety to a fixed obstacle or to unknown water beyond the chart";
     const auto r = moving(a, len_acc / pb_.speed, b, len, colreg ? ColregLevel::kFull : ColregLevel::kNone, esc);
     if (r == kTarget) return leg + "closer than d_safety to a target (eq. 3-4)";
     if (r == kColreg) return leg + "not COLREG-compliant (§5)";

@@ -21,10 +21,13 @@ namespace mpgc::obstacle_manager {
 // shape (by its position, e.g. "shape 2 (polygon)") on any malformed entry.
 void add_shapes(ChartBuilder& b, const std::string& spec);
 
-// When to publish which part of the fixed obstacles: a square of half side `half_size` around the
-// own ship, re-centred when the ship is farther than `republish_distance` from the last centre.
+// When to publish which part of the fixed obstacles: the box around the own ship and the mission
+// goal, `half_size` beyond each, re-published when the ship is farther than `republish_distance`
+// from where it was or the goal changed. The planner counts water beyond the box as unknown (it
+// holds every obstacle inside it and nothing beyond), so the box covers the goal: a plan never
+// needs to leave it. half_size 0: the whole chart, taken as complete (an infinite region).
 struct RegionParams {
-  double half_size = 10000.0;           // [m] half side of the published square; 0 = whole chart
+  double half_size = 10000.0;           // [m] margin of the published box; 0 = whole chart
   double republish_distance = 2000.0;   // [m] re-centre after moving this far; < half_size
   void validate() const;
 };
@@ -32,16 +35,19 @@ struct RegionParams {
 class RegionPolicy {
  public:
   explicit RegionPolicy(RegionParams p);
-  // True when nothing was published yet, the ship left the republish circle, or the chart changed.
+  // True when nothing was published yet, the ship left the republish circle, the goal or the
+  // chart changed.
   bool needs_update(geom::Vec2 own) const;
   void chart_changed() { dirty_ = true; }
+  // The mission goal (nullopt: none); a change makes the region due again.
+  void set_goal(std::optional<geom::Vec2> goal);
   // The region to publish for the ship at `own`, and remember it as published.
-  BoxNE publish(geom::Vec2 own, const BoxNE& chart_bounds);
+  BoxNE publish(geom::Vec2 own);
   bool whole_chart() const { return p_.half_size == 0.0; }
 
  private:
   RegionParams p_;
-  std::optional<geom::Vec2> centre_;
+  std::optional<geom::Vec2> centre_, goal_;
   bool dirty_ = true;
 };
 

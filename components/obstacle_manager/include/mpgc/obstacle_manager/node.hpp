@@ -57,7 +57,7 @@ ObstacleSet load_chart(const NodeParams& p, const geo::LocalNed& frame, const st
 BoxNE chart_bounds(const ObstacleSet& s);
 
 // The fixed obstacles as published: the chart (reloaded when its files change) and the region of
-// it around the own ship (the whole chart when region.half_size is 0).
+// it around the own ship and the goal (the whole chart when region.half_size is 0).
 class FixedFeed {
  public:
   FixedFeed(const NodeParams& p, const geo::LocalNed& frame, std::vector<std::string> files);  // loads; throws
@@ -73,6 +73,8 @@ class FixedFeed {
   Part publish(geom::Vec2 centre);
   // The own ship is at `own`: the part to publish when it left the republish circle (or first).
   std::optional<Part> own_at(geom::Vec2 own);
+  // The mission goal is `goal` (nullopt: none): the part to publish when that changed the region.
+  std::optional<Part> goal_at(std::optional<geom::Vec2> goal);
   // The whole chart needs no own position: published at once for planners that start first.
   std::optional<Part> at_start();
   // Files changed on disk: reloads them and returns what to publish (around the last own position,
@@ -87,7 +89,6 @@ class FixedFeed {
   std::vector<std::string> files_;
   std::string stamp_;
   ObstacleSet chart_;
-  BoxNE bounds_{0, 0, 0, 0};
   RegionPolicy region_;
   std::optional<geom::Vec2> own_;
   uint32_t version_ = 0;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "mpgc/msg/nav.hpp"
+#include "mpgc/msg/plan.hpp"
 #include "mpgc/msg/tracks.hpp"
 #include "mpgc/obstacle_manager/manager.hpp"
 
@@ -18,6 +19,14 @@ namespace mpgc::obstacle_manager {
 inline std::string check_nav(const msg::NavState& s) {
   if (!(s.valid_mask & msg::NAV_POSITION_VALID)) return "position not valid";
   if (!std::isfinite(s.x) || !std::isfinite(s.y)) return "position not finite";
+  return "";
+}
+
+// plan/goal: a finite goal within DomainParams' range of the origin (the region is stretched to
+// cover it; a goal 1e16 m away must not make it the size of the chart's numbers).
+inline std::string check_goal(const msg::MissionGoal& g, double max_range) {
+  if (!std::isfinite(g.x) || !std::isfinite(g.y)) return "goal position not finite";
+  if (std::hypot(g.x, g.y) > max_range) return "goal farther than moving.max_range from the origin";
   return "";
 }
 

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,8 @@ struct NodeParams {
   double max_state_age = 5;      // [s] own state older than this is not planned from
   nav::JumpGateParams jumps;     // own position jumps are not planned from (timeout: max_state_age)
   double max_obstacle_age = 10;  // [s] moving obstacles older than this are not planned with
+  double target_sigmas = 2;      // [-] a target is kept d_safety + this x its position sigma away
+  bool require_chart = true;     // no plan before obstacles/fixed said which region is known
   bool warm_start = true;        // seed the search with the previous path of the same goal
   bool pin_encounters = true;    // hold each leg to the obligation fixed at the encounter's start
   double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
@@ -74,11 +77,13 @@ struct GoalSpec {
 };
 struct TrackReport {
   uint32_t id = 0;
-  Vec2 p, v;  // [m], [m/s] at the report's time
+  Vec2 p, v;                 // [m], [m/s] at the report's time
+  double position_std = 0;   // [m] one sigma, grown by the obstacle manager while unmeasured
 };
 
-// Targets at the planning time: each report extrapolated over its age `dt` [s] (eq. 3).
-std::vector<Target> targets_at(const std::vector<TrackReport>& tracks, double dt);
+// Targets at the planning time: each report extrapolated over its age `dt` [s] (eq. 3), with a
+// margin of `sigmas` x its position sigma (a non-finite or negative sigma counts as 0).
+std::vector<Target> targets_at(const std::vector<TrackReport>& tracks, double dt, double sigmas);
 
 struct Setup {
   Problem problem;
@@ -92,10 +97,21 @@ struct Setup {
   }
 };
 
+// The chart as last published: its obstacles and the region they are complete for.
+struct ChartView {
+  const FixedObstacles* obstacles = nullptr;  // nullptr: none received
+  std::optional<Bounds> region;               // nullopt: complete everywhere (a chart published whole)
+};
+
 // The problem of plan number `plan_index` (its seed is seed + plan_index) from the own ship, the
-// goal and the targets at the planning time. `fixed` (may be null) is the chart.
+// goal and the targets at the planning time, on the chart (the sampling box kept inside its region).
 Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goal, std::vector<Target> targets,
-                  const FixedObstacles* fixed, uint32_t plan_index);
+                  const ChartView& chart, uint32_t plan_index);
+
+// Why the node waits instead of planning on this chart: none received while require_chart, or a
+// goal the chart's region does not cover with d_safety to spare (the obstacle manager re-publishes
+// the region when the goal changes). "" = plan.
+std::string chart_wait(const NodeParams& p, const Setup& s, bool have_chart);
 
 // When a risk of collision pins an encounter, for this setup (encounter_cpa x d_safety; TCPA
 // within the plan's horizon; released beyond d_COLREG).

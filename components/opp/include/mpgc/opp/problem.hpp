@@ -8,8 +8,10 @@
 //   std::string why = opp::check_problem(pb, constraints);   // "" = plannable
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,8 @@ struct Target {
   Vec2 v;           // [m/s] velocity
   PinnedEncounter pinned;  // COLREG obligation fixed for the encounter (EncounterMemory); kNone:
                            // the per-leg model of §5
+  double margin = 0.0;     // [m] kept beyond d_safety from this target (eq. 4): its position
+                           // uncertainty, which grows while nobody measures it (issue 15)
 };
 
 struct Goal {
@@ -37,6 +41,13 @@ struct Goal {
 struct Bounds {
   double min_x = 0, min_y = 0, max_x = 0, max_y = 0;  // [m] sampling region (NED)
   bool contains(Vec2 p) const { return p.x >= min_x && p.x <= max_x && p.y >= min_y && p.y <= max_y; }
+  // p lies at least d inside (every side; a box is convex, so a segment whose ends do lies inside too).
+  bool contains_by(Vec2 p, double d) const {
+    return p.x - min_x >= d && max_x - p.x >= d && p.y - min_y >= d && max_y - p.y >= d;
+  }
+  Bounds intersect(const Bounds& o) const {
+    return {std::max(min_x, o.min_x), std::max(min_y, o.min_y), std::min(max_x, o.max_x), std::min(max_y, o.max_y)};
+  }
 };
 
 struct Problem {
@@ -46,6 +57,10 @@ struct Problem {
   Goal goal;
   Bounds bounds;                       // must contain start and goal
   const FixedObstacles* fixed = nullptr;  // nullptr = open water
+  // The region the chart was published for (obstacles/fixed): beyond it the water is unknown, so a
+  // leg keeps its fixed clearance from the region's edge as from land (issue 15). nullopt: the
+  // obstacles are complete everywhere (tests, benchmark worlds, a chart published whole).
+  std::optional<Bounds> charted;
   std::vector<Target> targets;
   bool colreg = true;                  // require §5 compliance first (relax only if none, §6)
 };
@@ -83,7 +98,7 @@ struct ObjectiveParams {
 };
 
 // Why the problem cannot be planned (non-finite or out-of-bounds start or goal, a start or goal
-// inside d_safety, too many targets), or "" when it can.
+// inside d_safety, a goal not d_safety inside the charted region, too many targets), or "" when it can.
 std::string check_problem(const Problem& pb, const ConstraintParams& c);
 
 // Number formatting of the reasons (6 significant digits).

@@ -10,6 +10,7 @@
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/obstacles.hpp"
 #include "mpgc/msg/plan.hpp"
+#include "mpgc/opp/problem.hpp"
 
 namespace mpgc::opp {
 
@@ -47,6 +48,19 @@ inline std::string check_moving(const msg::MovingObstacles& m) {
       return "obstacle " + std::to_string(i) + " (id " + std::to_string(o.id) + ") has a non-finite position or velocity";
   }
   return "";
+}
+
+// obstacles/fixed: a region that is not NaN and not empty (an infinite side: the chart is
+// complete that way, as the obstacle manager publishes a chart it publishes whole).
+inline std::string check_fixed(const msg::FixedObstacles& m) {
+  for (double v : {m.region_min_x, m.region_min_y, m.region_max_x, m.region_max_y})
+    if (std::isnan(v)) return "region bound is NaN";
+  if (!(m.region_max_x > m.region_min_x) || !(m.region_max_y > m.region_min_y)) return "region is empty";
+  return "";
+}
+
+inline Bounds region_of(const msg::FixedObstacles& m) {
+  return {m.region_min_x, m.region_min_y, m.region_max_x, m.region_max_y};
 }
 
 }  // namespace mpgc::opp

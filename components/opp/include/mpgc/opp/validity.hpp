@@ -41,9 +41,16 @@ class ValidityChecker {
   // Fixed clearance distance of a leg: d_safety, or from the start with escape_start, what the
   // start already keeps (a leg may not get closer than it starts).
   double fixed_distance(bool from_start) const { return from_start ? start_fixed_d_ : c_.safety_distance; }
-  // eq. 4 along the whole leg a -> b at distance d.
-  bool fixed_clear(Vec2 a, Vec2 b, double d) const { return fixed_->segment_clear(a, b, d); }
-  // eq. 3-4 along the leg a -> b (length len) started at time ta, against every target, plus
+  // [m] distance from p to the nearest fixed obstacle or to the edge of the charted region.
+  double fixed_clearance(Vec2 p) const;
+  // eq. 4 along the whole leg a -> b at distance d, from the chart's obstacles and from the unknown
+  // water beyond its region (a box: the leg is inside it by d when both ends are).
+  bool fixed_clear(Vec2 a, Vec2 b, double d) const {
+    if (pb_.charted && !(pb_.charted->contains_by(a, d) && pb_.charted->contains_by(b, d))) return false;
+    return fixed_->segment_clear(a, b, d);
+  }
+  // eq. 3-4 along the leg a -> b (length len) started at time ta, against every target (at
+  // d_safety + its margin), plus
   // COLREG at `level`. `escape`: a leg from a start already inside d_safety of a target may not
   // get closer to it than it starts (escape_start).
   Reject moving(Vec2 a, double ta, Vec2 b, double len, ColregLevel level, bool escape = false) const;
@@ -57,7 +64,7 @@ class ValidityChecker {
   const ConstraintParams& c_;
   NoFixedObstacles none_;
   const FixedObstacles* fixed_;
-  double cos_turn_, ds2_, dc2_, inv_u_, start_fixed_d_;
+  double cos_turn_, dc2_, inv_u_, start_fixed_d_;
   bool goal_any_heading_;
 };
 
