@@ -278,7 +278,9 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
       s.faults.empty() ? nullptr : &c.publisher<msg::FaultCommand>(mpgc::topics::kFaults, dds::QosProfile::command(16));
   // The system's health on the wall clock; its news is printed.
   std::mutex health_mutex;  // the executor feeds it, the wall-clock watchdog reads it
-  auto wall_ns = [] { return std::chrono::duration_cast<std::chrono::nanoseconds>(Steady::now().time_since_epoch()).count(); };
+  // The health view runs on the simulated clock, as the components' health periods do: in lockstep
+  // nobody is stale while the step waits for a plan, and a hung one is once the step goes on without it.
+  auto health_ns = [&c] { return c.now_ns(); };
   auto say = [&](const std::string& what) {
     if (!o.quiet) std::fputs(sr::say_line(s.name, c.clock().now_s(), what).c_str(), stdout);
     std::fflush(stdout);
@@ -288,7 +290,7 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
   };
   const auto run_start = Steady::now();
   auto wall_s = [run_start] { return std::chrono::duration<double>(Steady::now() - run_start).count(); };
-  sr::HealthNews health(sr::kRunComponents, wall_ns());
+  sr::HealthNews health(sr::kRunComponents, health_ns());
   sr::FaultEffects fx;
   fx.pid_of = [&](const std::string& component) { return static_cast<int>(component_pid(launcher, component)); };
   fx.signal = [](int pid, int sig) { kill(pid, sig); };
@@ -305,7 +307,7 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
   };
   fx.killed = [&](const std::string& component) {
     std::lock_guard<std::mutex> hg(health_mutex);
-    health.killed(component, wall_ns());
+    health.killed(component, health_ns());
   };
   fx.say = say;
   sr::FaultRun faults(s.faults, fx);
@@ -315,7 +317,7 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
     {
       std::lock_guard<std::mutex> g(health_mutex);
       say_all(health.sample(h.component, h.header.seq, static_cast<rt::Reported>(static_cast<int>(h.state)), h.detail,
-                            wall_ns(), &restarted));
+                            health_ns(), &restarted));
     }
     std::lock_guard<std::mutex> g(fault_mutex);
     faults.on_health(h.component, restarted, now, wall_s());
@@ -391,7 +393,7 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
       }
       {
         std::lock_guard<std::mutex> g(health_mutex);
-        say_all(health.changes(wall_ns()));  // stale ones, which no sample announces
+        say_all(health.changes(health_ns()));  // stale ones, which no sample announces
       }
       int status = 0;
       if (waitpid(launcher, &status, WNOHANG) == launcher) {

@@ -66,6 +66,20 @@ TEST(OppNode, AGrownUncertaintyWidensTheClearanceOfThatTarget) {
   EXPECT_GE(dmin, 1080.0 - 1e-6);
 }
 
+// A fuzz finding: a search box 1e16 m wide ground one plan for minutes. The problem is bounded.
+TEST(OppNode, AProblemTooWideToSearchIsRefused) {
+  opp::Problem pb;
+  pb.speed = 5;
+  pb.goal.p = {0, 2.6e6};
+  pb.bounds = {-3000, -3000, 3000, 2.603e6};
+  const opp::Result r = opp::plan(pb, opp::Params{});
+  EXPECT_EQ(r.status, opp::Status::kInvalidInput);
+  EXPECT_NE(r.reason.find("wider than 2500 km"), std::string::npos) << r.reason;
+  pb.goal.p = {0, 2.4e6};
+  pb.bounds.max_y = 2.403e6;
+  EXPECT_EQ(opp::check_problem(pb, opp::ConstraintParams{}), "");
+}
+
 // Beyond the region obstacles/fixed was published for, the water is unknown: no leg comes within
 // d_safety of the region's edge, a goal it does not cover makes the node wait, and no chart at all
 // makes it wait unless plan.require_chart is off.

@@ -58,6 +58,10 @@ std::string check_problem(const Problem& pb, const ConstraintParams& c) {
   if (!std::isfinite(b.min_x) || !std::isfinite(b.min_y) || !std::isfinite(b.max_x) || !std::isfinite(b.max_y) ||
       !(b.max_x > b.min_x) || !(b.max_y > b.min_y))
     return "sampling bounds are empty or not finite";
+  // The local NED frame is flat, and a search box 1e16 m wide took minutes and gigabytes for one
+  // plan (NodeGrid scans rings of empty cells, inside one iteration): the problem is bounded.
+  if (b.max_x - b.min_x > kMaxBoundsSide || b.max_y - b.min_y > kMaxBoundsSide)
+    return "sampling bounds wider than " + fmt(kMaxBoundsSide / 1000.0) + " km (start and goal too far apart)";
   if (!b.contains(pb.start)) return "start lies outside the sampling bounds";
   if (!b.contains(pb.goal.p)) return "goal lies outside the sampling bounds";
   if (pb.charted) {

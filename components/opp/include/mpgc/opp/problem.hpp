@@ -97,6 +97,9 @@ struct ObjectiveParams {
   void validate() const;
 };
 
+// [m] widest sampling box planned in: start and goal within 1000 km of the frame's origin, plus margins.
+inline constexpr double kMaxBoundsSide = 2.5e6;
+
 // Why the problem cannot be planned (non-finite or out-of-bounds start or goal, a start or goal
 // inside d_safety, a goal not d_safety inside the charted region, too many targets), or "" when it can.
 std::string check_problem(const Problem& pb, const ConstraintParams& c);

@@ -21,6 +21,7 @@ inline std::string check_nav(const msg::NavState& s) {
   const uint32_t need = msg::NAV_POSITION_VALID | msg::NAV_HEADING_VALID;
   if ((s.valid_mask & need) != need) return "position or heading flagged invalid";
   if (!finite2(s.x, s.y) || !std::isfinite(s.heading)) return "non-finite position or heading";
+  if (std::hypot(s.x, s.y) > 1e6) return "position more than 1000 km from the origin of the local frame";
   return "";
 }
 

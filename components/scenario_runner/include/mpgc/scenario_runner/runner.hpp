@@ -148,7 +148,7 @@ class RunRecorder {
   std::set<std::pair<double, double>> points_;
 };
 
-// The health news of a run (the view is rt::HealthBoard's, on a wall clock in ns): a component's
+// The health news of a run (the view is rt::HealthBoard's, on the run's simulated clock in ns): a component's
 // change to down, stale, degraded or back; a new incarnation (its health seq starts again) marks
 // the recovery of a killed or stopped one. "up" is news only after something else was said.
 class HealthNews {
