@@ -121,13 +121,7 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
 
 std::string chart_wait(const NodeParams& p, const Setup& s, bool have_chart) {
   if (!have_chart) return p.require_chart ? "no chart yet (obstacles/fixed)" : "";
-  const Problem& pb = s.problem;
-  if (!pb.charted) return "";
-  const Bounds& r = *pb.charted;
-  if (r.contains(pb.start) && r.contains_by(pb.goal.p, s.constraints.safety_distance)) return "";
-  return std::string(r.contains(pb.start) ? "goal" : "own ship") + " outside the charted region [" + fmt(r.min_x) +
-         ", " + fmt(r.max_x) + "] x [" + fmt(r.min_y) + ", " + fmt(r.max_y) + "] m or within d_safety (" +
-         fmt(s.constraints.safety_distance) + " m) of its edge";
+  return beyond_chart(s.problem, s.constraints.safety_distance);
 }
 
 EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {

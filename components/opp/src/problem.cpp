@@ -46,6 +46,17 @@ void ObjectiveParams::validate() const {
   require(fin(min_margin) && min_margin > 0, "min_margin", "must be finite and > 0");
 }
 
+std::string beyond_chart(const Problem& pb, double d) {
+  if (!pb.charted) return "";
+  const Bounds& r = *pb.charted;
+  // Unknown water beyond the region counts as land: the start may be closer (it is where the
+  // ship is; its first leg keeps what it has), the goal may not.
+  if (r.contains(pb.start) && r.contains_by(pb.goal.p, d)) return "";
+  return std::string(r.contains(pb.start) ? "goal" : "own ship") + " outside the charted region [" + fmt(r.min_x) +
+         ", " + fmt(r.max_x) + "] x [" + fmt(r.min_y) + ", " + fmt(r.max_y) + "] m or within d_safety (" + fmt(d) +
+         " m) of its edge: the water beyond it is unknown";
+}
+
 std::string check_problem(const Problem& pb, const ConstraintParams& c) {
   if (!finite(pb.start)) return "start position is not finite";
   if (!std::isfinite(pb.heading)) return "own heading is not finite";
@@ -69,12 +80,8 @@ std::string check_problem(const Problem& pb, const ConstraintParams& c) {
     if (std::isnan(r.min_x) || std::isnan(r.min_y) || std::isnan(r.max_x) || std::isnan(r.max_y) ||
         !(r.max_x > r.min_x) || !(r.max_y > r.min_y))
       return "charted region is empty or NaN";
-    // Unknown water beyond the region counts as land: the start may be closer (it is where the
-    // ship is; its first leg keeps what it has), the goal may not.
-    if (!r.contains(pb.start)) return "start lies outside the charted region (the water there is unknown)";
-    if (!r.contains_by(pb.goal.p, c.safety_distance))
-      return "goal lies outside the charted region or within d_safety (" + fmt(c.safety_distance) +
-             " m) of its edge: the water beyond it is unknown";
+    const std::string why = beyond_chart(pb, c.safety_distance);
+    if (!why.empty()) return why;
   }
   if (pb.targets.size() > 10000) return "too many targets (" + std::to_string(pb.targets.size()) + " > 10000)";
   for (size_t i = 0; i < pb.targets.size(); ++i) {

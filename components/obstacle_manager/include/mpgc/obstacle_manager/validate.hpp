@@ -26,7 +26,8 @@ inline std::string check_nav(const msg::NavState& s) {
 // cover it; a goal 1e16 m away must not make it the size of the chart's numbers).
 inline std::string check_goal(const msg::MissionGoal& g, double max_range) {
   if (!std::isfinite(g.x) || !std::isfinite(g.y)) return "goal position not finite";
-  if (std::hypot(g.x, g.y) > max_range) return "goal farther than moving.max_range from the origin";
+  if (std::hypot(g.x, g.y) > max_range)
+    return "goal farther than " + std::to_string(static_cast<long long>(max_range / 1000)) + " km from the origin";
   return "";
 }
 

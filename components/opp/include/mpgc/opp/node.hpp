@@ -100,7 +100,8 @@ struct Setup {
 // The chart as last published: its obstacles and the region they are complete for.
 struct ChartView {
   const FixedObstacles* obstacles = nullptr;  // nullptr: none received
-  std::optional<Bounds> region;               // nullopt: complete everywhere (a chart published whole)
+  std::optional<Bounds> region;               // nullopt: complete everywhere (tests); a chart published
+                                              // whole comes with an infinite region
 };
 
 // The problem of plan number `plan_index` (its seed is seed + plan_index) from the own ship, the

@@ -104,6 +104,10 @@ inline constexpr double kMaxBoundsSide = 2.5e6;
 // inside d_safety, a goal not d_safety inside the charted region, too many targets), or "" when it can.
 std::string check_problem(const Problem& pb, const ConstraintParams& c);
 
+// Why the charted region does not hold the problem (own ship outside it, goal not `d` inside it),
+// or "" (also with no region).
+std::string beyond_chart(const Problem& pb, double d);
+
 // Number formatting of the reasons (6 significant digits).
 std::string fmt(double v);
 
