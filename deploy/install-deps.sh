@@ -10,6 +10,8 @@ PACKAGES=(
   cyclonedds-dev cyclonedds-tools
   libeigen3-dev libfcl-dev libspdlog-dev libyaml-cpp-dev libcli11-dev libnanoflann-dev nlohmann-json3-dev
   libgeographiclib-dev libgdal-dev libompl-dev
+  # recordings: zstd-compressed MCAP chunks (components/recorder)
+  libzstd-dev
   # tests and benchmarks; clang and libFuzzer for the long fuzz runs (tests/fuzz/README.md)
   libgtest-dev libgmock-dev clang libfuzzer-14-dev
   # multi-host tests: network namespaces, loss and delay (iptables + an NFQUEUE delayer: this kernel

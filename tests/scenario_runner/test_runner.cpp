@@ -42,8 +42,11 @@ TEST(Runner, LockstepLaunchFileHasTheParticipantsAndTheScenariosParameters) {
   s.params["opp"]["plan.seed"] = "7";
   s.chart_files = {"a.000", "b.000"};
   const auto c = components(sr::launch_file(s, "/run/x/world.yaml", sr::RunOptions{}, 3, {}, {}));
-  ASSERT_EQ(c.size(), 5u);
+  ASSERT_EQ(c.size(), 6u);  // the five and the recorder
   EXPECT_FALSE(c["ship_bridge"]);
+  EXPECT_EQ(c["recorder"]["executable"].as<std::string>(), "mpgc_record");
+  EXPECT_EQ(c["recorder"]["set"]["record.file"].as<std::string>(), "/run/x/run.mcap");
+  EXPECT_EQ(c["recorder"]["set"]["record.sim_time"].as<std::string>(), "true");
   EXPECT_EQ(c["ship_simulator"]["set"]["time.mode"].as<std::string>(), "lockstep");
   EXPECT_EQ(c["ship_simulator"]["set"]["lockstep.participants"].as<std::string>(),
             "scenario_runner,situational_awareness,obstacle_manager,opp,guidance_control");

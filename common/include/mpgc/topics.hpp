@@ -23,4 +23,33 @@ inline constexpr const char* kActuators = "control/actuators";  // ActuatorComma
 inline constexpr const char* kGuidanceStatus = "guidance/status";   // GuidanceStatus  state
 inline constexpr const char* kFaults = "sim/faults";            // FaultCommand      command (simulated runs only)
 
+// The same table for code that handles every topic alike (the recorder, replay): a topic added
+// here is recorded and replayed without other changes. `type` is the IDL name (mpgc/msg/all.hpp
+// finds it), `qos` a dds::QosProfile::by_name name.
+struct Info {
+  const char* name;
+  const char* type;
+  const char* qos;
+};
+inline constexpr Info kAll[] = {
+    {kClock, "mpgc::msg::Clock", "command"},
+    {kStepAck, "mpgc::msg::StepAck", "command"},
+    {kHealth, "mpgc::msg::ComponentHealth", "latched"},
+    {kOwnState, "mpgc::msg::NavState", "state"},
+    {kTruth, "mpgc::msg::GroundTruth", "state"},
+    {kAis, "mpgc::msg::AisReport", "command"},
+    {kRadar, "mpgc::msg::RadarScan", "state"},
+    {kTracks, "mpgc::msg::TrackList", "state"},
+    {kEncounters, "mpgc::msg::EncounterList", "state"},
+    {kFixedObstacles, "mpgc::msg::FixedObstacles", "latched"},
+    {kMovingObstacles, "mpgc::msg::MovingObstacles", "state"},
+    {kGoal, "mpgc::msg::MissionGoal", "latched"},
+    {kPath, "mpgc::msg::Path", "latched"},
+    {kPlanEncounters, "mpgc::msg::EncounterList", "latched"},
+    {kPlanMemory, "mpgc::msg::PlannerMemory", "latched"},
+    {kActuators, "mpgc::msg::ActuatorCommand", "command"},
+    {kGuidanceStatus, "mpgc::msg::GuidanceStatus", "state"},
+    {kFaults, "mpgc::msg::FaultCommand", "command"},
+};
+
 }  // namespace mpgc::topics

@@ -13,6 +13,7 @@
 
 #include "mpgc/json/json.hpp"
 #include "mpgc/scenario_runner/report.hpp"
+#include "mpgc/topics.hpp"
 
 namespace fs = std::filesystem;
 
@@ -165,6 +166,18 @@ std::string launch_file(const Scenario& s, const std::string& world_path, const 
   if (o.realtime_factor <= 0) sim["lockstep.hang_timeout"] = "45";
   if (!s.faults.empty())
     for (const auto& c : kRunComponents) set[c]["faults.accept"] = "true";
+  // The recorder (issue 19): on the wall clock, not a lockstep participant; every state writer of a
+  // simulated run is reliable (QosProfile::deterministic), so it reads them reliably too.
+  set["recorder"]["record.file"] = (run_dir / "run.mcap").string();
+  set["recorder"]["record.reliable_state"] = "true";
+  set["recorder"]["record.sim_time"] = "true";
+  set["recorder"]["map.safety_distance"] = std::to_string(s.safety_distance);
+  if (!o.secure.empty()) {  // a secured bus grants sim/faults to nobody (deploy/security/access.yaml)
+    std::string granted;
+    for (const auto& t : topics::kAll)
+      if (std::string(t.name) != topics::kFaults) granted += (granted.empty() ? "" : ",") + std::string(t.name);
+    set["recorder"]["record.topics"] = granted;
+  }
   for (const auto& [comp, kv] : s.params)
     for (const auto& [k, v] : kv) set[comp][k] = v;
 
@@ -186,13 +199,15 @@ std::string launch_file(const Scenario& s, const std::string& world_path, const 
   }
   std::vector<std::string> comps = kRunComponents;
   if (o.hil) comps.insert(comps.begin() + 1, "ship_bridge");
+  if (o.record && !o.containers) comps.insert(comps.begin(), "recorder");  // first: it sees the first samples
   const std::string& bin = ctx.bin_dir;
   // One component's entry; on a host (`in_ns`: its namespace, else its container) with the host's
   // Cyclone configuration.
   auto entry = [&](std::ostream& f, const std::string& c, bool in_ns) {
-    f << "  - name: " << c << "\n    executable: " << (o.containers ? bin + "/" : "") << "mpgc_" << c << "\n";
+    f << "  - name: " << c << "\n    executable: " << (o.containers ? bin + "/" : "") << "mpgc_" << (c == "recorder" ? "record" : c) << "\n";
     if (where.on_hosts) {
-      const deploy::Host* h = o.hosts->host_of(c);
+      // The recorder runs beside the evaluator, on the host of the scenario_runner.
+      const deploy::Host* h = o.hosts->host_of(c == "recorder" ? "scenario_runner" : c);
       if (in_ns) f << "    host: " << where.ns.at(h->name) << "\n";
       f << "    env: {CYCLONEDDS_URI: " << yaml_str("file://" + where.network_dir + "/" + h->name + "/cyclonedds.xml") << "}\n";
     }

@@ -7,6 +7,10 @@
 
 namespace mpgc::rt {
 
+// [ns] stamps from here on are wall-clock times (2001 onwards), not simulated time (< 3 years).
+inline constexpr int64_t kWallStamp_ns = 1'000'000'000'000'000'000;
+inline bool wall_clock_stamp(int64_t t_ns) { return t_ns >= kWallStamp_ns; }
+
 // [ns] later - earlier for stamps that come off the bus, saturated at the int64 range (a stamp
 // near INT64_MIN would overflow the plain subtraction: undefined behaviour).
 inline int64_t ns_between(int64_t later_ns, int64_t earlier_ns) {

@@ -7,7 +7,7 @@
 // before T, and the samples stamped T by the clock's publisher (the simulator writes a step's
 // sensor data before its Clock). Samples other components stamped T, in the same step, wait for the
 // next tick: whether they arrived before this component saw the Clock is a matter of timing.
-// Samples stamped on another clock (the wall clock: beyond kForeignStamp_ns) are delivered at once.
+// Samples stamped on another clock (the wall clock: rt::wall_clock_stamp) are delivered at once.
 // State topics are reliable on simulated time (QosProfile::deterministic) so no sample is lost.
 //
 //   int main(int argc, char** argv) {
@@ -62,6 +62,7 @@ class Component {
 
   const std::string& name() const { return name_; }
   spdlog::logger& log() { return *log_; }
+  std::shared_ptr<spdlog::logger> logger() const { return log_; }
   const Clock& clock() const { return *clock_; }
   int64_t now_ns() const { return clock_->now_ns(); }
   dds::Participant& participant() { return participant_; }
@@ -136,8 +137,6 @@ class Component {
   void stop(int exit_code = 0);
 
  private:
-  // [ns] stamps from here on are wall-clock times (2001 onwards), not simulated time (< 3 years).
-  static constexpr int64_t kForeignStamp_ns = 1'000'000'000'000'000'000;
   // Which queued samples a delivery hands over: all (wall clock), those of a Clock tick, or (on
   // arrival, simulated time) only those stamped on another clock.
   struct Gate {
@@ -148,7 +147,7 @@ class Component {
     static Gate arrival() { return {Mode::Arrival, 0, nullptr}; }
     bool passes() const { return mode != Mode::Arrival; }  // a sample without a header
     bool passes(const msg::Header& h) const {
-      if (mode == Mode::All || h.stamp_ns >= kForeignStamp_ns) return true;
+      if (mode == Mode::All || wall_clock_stamp(h.stamp_ns)) return true;
       return mode == Mode::Tick && (h.stamp_ns != tick_ns || h.source == *clock_publisher);
     }
   };

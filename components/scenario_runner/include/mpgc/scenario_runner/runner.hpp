@@ -63,6 +63,7 @@ struct RunOptions {
   bool containers = false;       // with hosts: each host a podman container (deploy/container)
   std::string image = "localhost/mpgc:bookworm";
   double plan_latency = 0.0;     // [s] per planner iteration: plans take effect late (opp plan.latency_per_iteration)
+  bool record = true;            // mpgc_record writes the bus to <run>/run.mcap (not yet with --containers)
 };
 
 // What the command line gives beside RunOptions' own fields.
