@@ -1,31 +1,30 @@
-// Every topic of the system with its type and QoS profile, in one place (design.md data flow).
+// Every topic of the system, its type and QoS profile, in one place (design.md data flow).
 #pragma once
 
 namespace mpgc::topics {
 
-// name                                      type                 QoS profile
-inline constexpr const char* kClock = "clock";                  // Clock             command (reliable, keep-last 16)
-inline constexpr const char* kStepAck = "clock/ack";            // StepAck           command
-inline constexpr const char* kHealth = "health";                // ComponentHealth   latched (keyed by component)
-inline constexpr const char* kOwnState = "nav/own_state";       // NavState          state (deadline 3 periods)
-inline constexpr const char* kTruth = "sim/truth";              // GroundTruth       state
-inline constexpr const char* kAis = "sensors/ais";              // AisReport         command (every report matters)
-inline constexpr const char* kRadar = "sensors/radar";          // RadarScan         state
-inline constexpr const char* kTracks = "sa/tracks";             // TrackList         state
-inline constexpr const char* kEncounters = "sa/encounters";     // EncounterList     state
-inline constexpr const char* kFixedObstacles = "obstacles/fixed";   // FixedObstacles  latched
-inline constexpr const char* kMovingObstacles = "obstacles/moving"; // MovingObstacles state
-inline constexpr const char* kGoal = "mission/goal";            // MissionGoal       latched
-inline constexpr const char* kPath = "plan/path";               // Path              latched
-inline constexpr const char* kPlanEncounters = "plan/encounters";   // EncounterList   latched
-inline constexpr const char* kPlanMemory = "plan/memory";       // PlannerMemory     latched (opp reads it back on restart)
-inline constexpr const char* kActuators = "control/actuators";  // ActuatorCommand   command
-inline constexpr const char* kGuidanceStatus = "guidance/status";   // GuidanceStatus  state
-inline constexpr const char* kFaults = "sim/faults";            // FaultCommand      command (simulated runs only)
+inline constexpr const char* kClock = "clock";  // reliable, keep-last 16
+inline constexpr const char* kStepAck = "clock/ack";
+inline constexpr const char* kHealth = "health";  // keyed by component
+inline constexpr const char* kOwnState = "nav/own_state";  // deadline 3 periods
+inline constexpr const char* kTruth = "sim/truth";
+inline constexpr const char* kAis = "sensors/ais";  // every report matters
+inline constexpr const char* kRadar = "sensors/radar";
+inline constexpr const char* kTracks = "sa/tracks";
+inline constexpr const char* kEncounters = "sa/encounters";
+inline constexpr const char* kFixedObstacles = "obstacles/fixed";
+inline constexpr const char* kMovingObstacles = "obstacles/moving";
+inline constexpr const char* kGoal = "mission/goal";
+inline constexpr const char* kPath = "plan/path";
+inline constexpr const char* kPlanEncounters = "plan/encounters";
+inline constexpr const char* kPlanMemory = "plan/memory";  // opp reads it back on restart
+inline constexpr const char* kActuators = "control/actuators";
+inline constexpr const char* kGuidanceStatus = "guidance/status";
+inline constexpr const char* kFaults = "sim/faults";  // simulated runs only
 
-// The same table for code that handles every topic alike (the recorder, replay): a topic added
-// here is recorded and replayed without other changes. `type` is the IDL name (mpgc/msg/all.hpp
-// finds it), `qos` a dds::QosProfile::by_name name.
+// Every topic with its type and QoS profile, for code that handles every topic alike (the
+// recorder, replay): a topic added here is recorded without other changes. `type` is the IDL
+// name (mpgc/msg/all.hpp finds it), `qos` a dds::QosProfile::by_name name.
 struct Info {
   const char* name;
   const char* type;
