@@ -110,7 +110,10 @@ int main(int argc, char** argv) {
                                 });
 
     c.every(p.period, [&] {
-      const int64_t now = c.now_ns();
+      // The list holds at the newest stamp taken when that is ahead of our clock (never negative
+      // since_update); silence is still judged on our own clock.
+      const int64_t heard = c.now_ns();
+      const int64_t now = tracker->list_time(heard);
       const std::vector<sa::Track> tracks = tracker->tracks_at(now);
       msg::TrackList tl;
       tl.header = c.header();
@@ -118,7 +121,7 @@ int main(int argc, char** argv) {
       for (const auto& t : tracks) tl.tracks.push_back(to_msg(t, now));
       tracks_out.write(tl);
       c.count("cycles");
-      for (const auto& v : sensors.at(now)) c.set_problem(v.name, v.detail);
+      for (const auto& v : sensors.at(heard)) c.set_problem(v.name, v.detail);
       const double age = own ? mpgc::rt::seconds_between(now, own->header.stamp_ns) : 0.0;
       const std::string own_problem = sa::own_problem(p, own.has_value(), age);
       c.set_problem("own", own_problem);

@@ -134,6 +134,10 @@ std::string launch_file(const Scenario& s, const std::string& world_path, const 
     // The actuator watchdog runs on simulated time but the orders' jitter is the wall clock's:
     // at 20x, 0.1 s of wall time is 2 s simulated. Give it 0.2 s of wall time at least.
     sim["watchdog.timeout"] = std::to_string(std::max(2.0, 0.2 * o.realtime_factor));
+    // Likewise the skew between a sample's stamp and the receiving host's sim clock, which is
+    // advanced by `clock` samples that a lossy link repairs 0.1-0.2 s of wall time late: radar
+    // scans came 1.5 s simulated "from the future" at 20x and were refused. 0.15 s of wall time.
+    set["situational_awareness"]["tracker.max_future"] = std::to_string(std::max(1.0, 0.15 * o.realtime_factor));
   } else {
     sim["time.mode"] = "lockstep";
     std::string participants = "scenario_runner";

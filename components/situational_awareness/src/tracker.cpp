@@ -424,6 +424,7 @@ void Tracker::delete_stale(int64_t t_ns) {
 }
 
 std::vector<Track> Tracker::tracks_at(int64_t t_ns) const {
+  t_ns = list_time(t_ns);
   std::vector<Track> out;
   out.reserve(tracks_.size());
   for (Track t : tracks_) {

@@ -8,9 +8,11 @@
 //   auto why = trk.add_ais(report, now_ns);               // empty: accepted; else Rejections
 //   auto bad = trk.add_radar(scan, now_ns);               // one reason per refused contact
 //   trk.advance(nav_stamp_ns);                            // drop tracks silent for too long
-//   for (const sa::Track& t : trk.tracks_at(now_ns)) ...  // predicted to now
+//   const int64_t t = trk.list_time(now_ns);              // now, or the newest stamp if later
+//   for (const sa::Track& t : trk.tracks_at(t)) ...       // predicted to t
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -132,7 +134,13 @@ class Tracker {
   // and deletes the tracks that have been silent too long. Earlier stamps are ignored.
   void advance(int64_t stamp_ns);
 
-  // Tracks predicted to t_ns (the stored filters are not changed), with status by t_ns.
+  // The time a track list can be valid at: now_ns, or the newest stamp taken if that is later.
+  // Stamps up to max_future ahead of the receive time are taken (another host's clock, or a sim
+  // clock that reaches this host later than the samples stamped by it); a list stamped before
+  // them would report negative since_update and predict filters backwards.
+  int64_t list_time(int64_t now_ns) const { return have_time_ ? std::max(now_ns, now_ns_) : now_ns; }
+  // Tracks predicted to t_ns (the stored filters are not changed), with status by t_ns. A t_ns
+  // before list_time(t_ns) is raised to it: a filter is never predicted backwards.
   std::vector<Track> tracks_at(int64_t t_ns) const;
   const std::vector<Track>& tracks() const { return tracks_; }
   int64_t time_ns() const { return now_ns_; }
