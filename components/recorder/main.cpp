@@ -53,6 +53,7 @@ class RawSide {
       dds_qset_history(q, DDS_HISTORY_KEEP_LAST, p.depth);
       Raw t;
       t.name = name;
+      t.counter = "recorded." + name;
       t.type = type;
       t.topic = dds::Entity(dds::check(dds_create_topic(part_.handle(), type->descriptor, name.c_str(), nullptr, nullptr),
                                        "create topic '" + name + "'"));
@@ -95,6 +96,7 @@ class RawSide {
  private:
   struct Raw {
     std::string name;
+    std::string counter;  // "recorded.<topic>", built once
     const msg::TypeInfo* type = nullptr;
     dds::Entity topic, reader;
     int channel = -1;
@@ -114,7 +116,7 @@ class RawSide {
     if (failed_) return;
     try {
       rec_.write(t.channel, log_time(stamp), log_time(info.source_timestamp), buf_.data(), buf_.size());
-      if (!closing_) c_.count("recorded." + t.name);
+      if (!closing_) c_.count(t.counter);
     } catch (const std::exception& e) {
       failed_ = true;  // a full disk or a lost mount: say so and stop writing rather than throw each sample
       log_->error("recording stopped: {}", e.what());

@@ -20,6 +20,7 @@
 #include "mpgc/ship_simulator/step_log.hpp"
 #include "mpgc/ship_simulator/world.hpp"
 #include "mpgc/ship/check_command.hpp"
+#include "mpgc/text/list.hpp"
 #include "mpgc/topics.hpp"
 
 namespace sim = mpgc::ship_simulator;
@@ -48,7 +49,7 @@ int main(int argc, char** argv) {
     const auto& cfg = world->config();
     const bool lockstep = p.lockstep();
     const double wall_per_sim = p.wall_per_sim();
-    auto barrier = std::make_shared<sim::LockstepBarrier>(sim::split_names(p.participants));
+    auto barrier = std::make_shared<sim::LockstepBarrier>(mpgc::text::split_list(p.participants));
     c.log().info("world {}: model {}, {} targets, mode {}, step {} s, participants [{}]", p.world_file,
                  world->own().name(), cfg.targets.size(), p.mode, p.step, p.participants);
 

@@ -117,7 +117,9 @@ TEST(Recorder, EveryTopicHasARegisteredTypeAndSchema) {
   for (const auto& t : mpgc::topics::kAll) {
     const auto* type = mpgc::msg::find_type(t.type);
     ASSERT_NE(type, nullptr) << t.name << ": " << t.type;
-    EXPECT_NE(std::string(type->idl).find(std::string("struct ") + (std::string(t.type).substr(11))), std::string::npos) << t.type;
+    const std::string full(t.type);  // "mpgc::msg::NavState": the IDL declares "struct NavState"
+    const std::string name = full.substr(full.rfind("::") + 2);
+    EXPECT_NE(std::string(type->idl).find("struct " + name + " "), std::string::npos) << t.type;
   }
 }
 

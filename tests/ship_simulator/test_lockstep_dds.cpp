@@ -22,6 +22,7 @@
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/ship_simulator/lockstep.hpp"
 #include "mpgc/testing.hpp"
+#include "mpgc/text/list.hpp"
 #include "mpgc/topics.hpp"
 
 extern char** environ;
@@ -33,7 +34,7 @@ namespace topics = mpgc::topics;
 namespace sim = mpgc::ship_simulator;
 
 TEST(LockstepBarrier, WaitsForEveryParticipant) {
-  sim::LockstepBarrier b(sim::split_names(" guidance, opp ,,"));
+  sim::LockstepBarrier b(mpgc::text::split_list(" guidance, opp ,,"));
   b.begin(4);
   EXPECT_FALSE(b.complete());
   EXPECT_EQ(b.ack("guidance", 3), sim::LockstepBarrier::Ack::Stale);

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/runtime/params.hpp"
+#include "mpgc/text/list.hpp"
 
 namespace mpgc::obstacle_manager {
 
@@ -58,12 +58,7 @@ void declare(rt::ParamSet& ps, NodeParams& p) {
 
 std::vector<std::string> chart_files(const std::string& list, const std::string& shared_dir) {
   std::vector<std::string> out;
-  std::stringstream ss(list);
-  std::string f;
-  while (std::getline(ss, f, ',')) {
-    const auto a = f.find_first_not_of(" \t"), b = f.find_last_not_of(" \t");
-    if (a == std::string::npos) continue;
-    f = f.substr(a, b - a + 1);
+  for (std::string f : text::split_list(list)) {
     struct stat st {};
     if (f[0] != '/' && ::stat(f.c_str(), &st) != 0 && !shared_dir.empty()) {
       const std::string alt = shared_dir + "/" + f;

@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include "mpgc/json/json.hpp"
 #include "mpgc/runtime/params.hpp"
+#include "mpgc/text/list.hpp"
 
 namespace mpgc::recorder {
 
@@ -34,12 +34,7 @@ void declare(rt::ParamSet& ps, RecorderParams& p) {
 std::vector<std::string> select_topics(const std::string& list, const std::vector<std::string>& all) {
   if (list.empty()) return all;
   std::vector<std::string> out;
-  std::stringstream ss(list);
-  std::string t;
-  while (std::getline(ss, t, ',')) {
-    const auto b = t.find_first_not_of(' '), e = t.find_last_not_of(' ');
-    if (b == std::string::npos) continue;
-    t = t.substr(b, e - b + 1);
+  for (const std::string& t : text::split_list(list)) {
     bool known = false;
     for (const auto& a : all) known = known || a == t;
     if (!known) {

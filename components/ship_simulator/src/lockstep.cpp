@@ -1,6 +1,5 @@
 #include "mpgc/ship_simulator/lockstep.hpp"
 
-#include <sstream>
 #include <stdexcept>
 
 namespace mpgc::ship_simulator {
@@ -51,19 +50,6 @@ std::vector<std::string> LockstepBarrier::missing() const {
   std::vector<std::string> out;
   for (const auto& p : participants_)
     if (!absent_.count(p) && !acked_.count(p)) out.push_back(p);
-  return out;
-}
-
-std::vector<std::string> split_names(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto b = item.find_first_not_of(" \t");
-    if (b == std::string::npos) continue;
-    const auto e = item.find_last_not_of(" \t");
-    out.push_back(item.substr(b, e - b + 1));
-  }
   return out;
 }
 

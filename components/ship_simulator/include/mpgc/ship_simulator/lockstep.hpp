@@ -42,8 +42,6 @@ class LockstepBarrier {
   uint64_t step_ = 0;
 };
 
-// "a, b,c" -> {"a", "b", "c"} (blanks trimmed, empty items dropped).
-std::vector<std::string> split_names(const std::string& text);
 // {"a", "b"} -> "a, b".
 template <class Names>
 std::string join_names(const Names& names) {
