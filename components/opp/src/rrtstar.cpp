@@ -159,7 +159,9 @@ class Tree {
     }
     neighbours(xnew, near);
     const double fixed_new = o_.fixed_term(xnew);
-    // Choose parent: candidates sorted by cost, checked lazily (first valid wins).
+    // Choose parent: the candidates are checked in order of cost (the first valid wins). The
+    // steering term (an acos) is paid only for those whose cost bound without it does not rule
+    // them out: the cheapest candidate not yet costed is at least its bound.
     cand_.clear();
     for (const auto& [d2, j] : nbh_) {
       const Node& a = nodes_[j];
@@ -170,15 +172,27 @@ class Tree {
         ++rejects_[ValidityChecker::kTurn];
         continue;
       }
-      const double tb = (a.len + len) * inv_speed();
-      cand_.push_back({a.cost + o_.edge_cost(a.dir, j == 0, seg, len, fixed_new, xnew, tb), len, j});
+      const double mv = o_.moving_term(xnew, (a.len + len) * inv_speed());
+      cand_.push_back({a.cost + o_.edge_sum(0.0, fixed_new, mv, len), mv, len, j});
     }
-    std::sort(cand_.begin(), cand_.end(), [](const Cand& x, const Cand& y) {
-      return x.cost < y.cost || (x.cost == y.cost && x.idx < y.idx);
-    });
+    auto before = [](const Cand& x, const Cand& y) { return x.cost < y.cost || (x.cost == y.cost && x.idx < y.idx); };
+    std::sort(cand_.begin(), cand_.end(), before);
+    auto after = [&](const Cand& x, const Cand& y) { return before(y, x); };  // min-heap of costed ones
+    costed_.clear();
     int parent = -1;
     double parent_cost = 0, parent_len = 0;
-    for (const Cand& c : cand_) {
+    for (size_t next = 0;;) {
+      while (next < cand_.size() && (costed_.empty() || !(costed_.front().cost < cand_[next].cost))) {
+        Cand c = cand_[next++];
+        const Node& a = nodes_[c.idx];
+        c.cost = a.cost + o_.edge_sum(o_.steer_term(a.dir, xnew - a.p, c.len, c.idx == 0), fixed_new, c.moving, c.len);
+        costed_.push_back(c);
+        std::push_heap(costed_.begin(), costed_.end(), after);
+      }
+      if (costed_.empty()) break;
+      std::pop_heap(costed_.begin(), costed_.end(), after);
+      const Cand c = costed_.back();
+      costed_.pop_back();
       const Node& a = nodes_[c.idx];
       ++st_.edge_checks;
       const auto r = edge_reject(a.p, a.len * inv_speed(), xnew, c.len, c.idx == 0);
@@ -230,7 +244,7 @@ class Tree {
     bool goal_edge = false;
   };
   struct Cand {
-    double cost, len;
+    double cost, moving, len;  // cost: the bound without steering until costed
     int idx;
   };
 
@@ -330,8 +344,10 @@ class Tree {
     Node& b = nodes_[j];
     const Vec2 seg = b.p - a.p;
     const double tb = (a.len + len) * inv_speed();
-    const double new_cost = a.cost + o_.edge_cost(a.dir, false, seg, len, b.fixed, b.p, tb);
-    if (!(new_cost < b.cost - 1e-12 * std::max(1.0, std::fabs(b.cost)))) return;
+    const double mv = o_.moving_term(b.p, tb), bar = b.cost - 1e-12 * std::max(1.0, std::fabs(b.cost));
+    if (!(a.cost + o_.edge_sum(0.0, b.fixed, mv, len) < bar)) return;  // no cheaper even unsteered
+    const double new_cost = a.cost + o_.edge_sum(o_.steer_term(a.dir, seg, len, false), b.fixed, mv, len);
+    if (!(new_cost < bar)) return;
     if (!v_.turn_ok(a.dir, seg, len, false)) return;
     ++st_.edge_checks;
     if (edge_reject(a.p, a.len * inv_speed(), b.p, len) != ValidityChecker::kValid) return;
@@ -450,7 +466,7 @@ class Tree {
   std::vector<Node> nodes_;
   std::vector<uint8_t> fixed_cache_;
   std::vector<std::pair<double, int>> nbh_;
-  std::vector<Cand> cand_;
+  std::vector<Cand> cand_, costed_;
   std::vector<Upd> upd_;
   std::vector<int> stack_;
   std::vector<int> goal_nodes_;

@@ -59,7 +59,9 @@ class NodeGrid {
     return best;
   }
 
-  // The k nearest nodes (any order) into `out` as (squared distance, index).
+  // The k nearest nodes (any order) into `out` as (squared distance, index). Every point of the
+  // scanned rings is kept and the k-th distance found by selection, cheaper than a bounded heap
+  // for the k of RRT* (about 40), and the same set.
   void k_nearest(Vec2 q, int k, std::vector<std::pair<double, int>>& out) const {
     out.clear();
     if (k <= 0) return;
@@ -67,23 +69,18 @@ class NodeGrid {
     cell_ij(q, ci, cj);
     const double m = margin(q, ci, cj);
     const int rmax = std::max(nx_, ny_);
+    const size_t kk = static_cast<size_t>(k);
     for (int r = 0; r <= rmax; ++r) {
       ring(ci, cj, r, [&](const std::vector<Entry>& c) {
-        for (const Entry& e : c) {
-          const double d = (e.x - q.x) * (e.x - q.x) + (e.y - q.y) * (e.y - q.y);
-          if (static_cast<int>(out.size()) < k) {
-            out.emplace_back(d, e.idx);
-            std::push_heap(out.begin(), out.end());
-          } else if (d < out.front().first) {
-            std::pop_heap(out.begin(), out.end());
-            out.back() = {d, e.idx};
-            std::push_heap(out.begin(), out.end());
-          }
-        }
+        for (const Entry& e : c) out.emplace_back((e.x - q.x) * (e.x - q.x) + (e.y - q.y) * (e.y - q.y), e.idx);
       });
+      if (out.size() < kk) continue;
+      std::nth_element(out.begin(), out.begin() + (kk - 1), out.end());
+      out.resize(kk);  // the k nearest so far: a point beyond the k-th never enters again
       const double lb = r * cell_ + m;
-      if (static_cast<int>(out.size()) == k && out.front().first <= lb * lb) break;
+      if (out.back().first <= lb * lb) break;
     }
+    if (out.size() > kk) out.resize(kk);
   }
 
   // Every node within distance r (inclusive) of q.

@@ -33,7 +33,13 @@ class Objective {
   // Cost added by the leg a -> b (eq. 5 increment): steering at a, margins at b (fixed_b: its
   // fixed_term, reused), length.
   double edge_cost(Vec2 dir, bool at_root, Vec2 seg, double len, double fixed_b, Vec2 b, double tb) const {
-    return steer_term(dir, seg, len, at_root) + fixed_b + moving_term(b, tb) + w_.gamma_l * len;
+    return edge_sum(steer_term(dir, seg, len, at_root), fixed_b, moving_term(b, tb), len);
+  }
+  // The same sum from its terms. With steer = 0 it is a lower bound of the edge's cost in floating
+  // point too (the steering term is >= 0 and rounding is monotone), so a search can refuse an edge
+  // on the bound before it pays for the steering term's acos, with the same result.
+  double edge_sum(double steer, double fixed_b, double moving_b, double len) const {
+    return steer + fixed_b + moving_b + w_.gamma_l * len;
   }
   // The terms of a whole path at the problem's constant speed.
   CostTerms path_cost(const std::vector<Vec2>& path) const;
