@@ -18,13 +18,14 @@ function(mpgc_add_subdirectories dir)
 endfunction()
 
 # mpgc_add_gtest(NAME name SOURCES ... LIBS ... LABELS unit|integration|scenario <component> [TIMEOUT s]
-#                [SERIAL])
-# SERIAL: ctest runs it alone (RUN_SERIAL), for closed loops at a real-time factor whose outcome a
-# second test competing for the 2 cores would change.
+#                [SERIAL] [SERIAL_TESTS Suite.Name ...])
+# SERIAL: ctest runs its tests alone (RUN_SERIAL), for closed loops at a real-time factor or with
+# wall-clock windows whose outcome a second test competing for the 2 cores would change;
+# SERIAL_TESTS: only these of its tests (a lockstep loop beside them needs no such care).
 # Every test runs with the loopback Cyclone configuration and finds the shared data through
 # MPGC_SHARED_DATA and the project's executables through MPGC_BIN_DIR.
 function(mpgc_add_gtest)
-  cmake_parse_arguments(T "SERIAL" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "SERIAL" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS;SERIAL_TESTS" ${ARGN})
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
@@ -50,6 +51,13 @@ function(mpgc_add_gtest)
     "if(${T_NAME}_TESTS)\n"
     "  set_tests_properties(\${${T_NAME}_TESTS} PROPERTIES LABELS \"${T_LABELS}\" TIMEOUT ${T_TIMEOUT}${serial}\n"
     "    ENVIRONMENT \"${env}\")\n"
+    "  foreach(t ${T_SERIAL_TESTS})\n"
+    "    if(t IN_LIST ${T_NAME}_TESTS)\n"
+    "      set_tests_properties(\${t} PROPERTIES RUN_SERIAL TRUE)\n"
+    "    else()\n"
+    "      message(FATAL_ERROR \"${T_NAME}: SERIAL_TESTS names \${t}, not one of its tests\")\n"
+    "    endif()\n"
+    "  endforeach()\n"
     "endif()\n")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${props_file})
 endfunction()
