@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Installs every Debian package mpgc builds, tests and runs with, by name (Debian 12 bookworm).
+# Installs every Debian package mpgc builds, tests and runs with, by name (Debian 12 bookworm), and
+# the npm packages the tests read recordings with, at the versions pinned in the repo
+# (tests/recorder/js/package-lock.json, `npm ci`).
 # Usage: deploy/install-deps.sh [--check]   (--check: list what is missing, install nothing)
 set -euo pipefail
 
@@ -20,19 +22,33 @@ PACKAGES=(
   iproute2 iptables libnetfilter-queue-dev tcpdump podman runc debootstrap openssl
   # hardware in the loop: gpsd and libgps for the ship bridge, gpsfake (gpsd-clients) for the log replays
   gpsd gpsd-clients libgps-dev
+  # recordings read back with other people's code (tests/recorder/js: @mcap/core, Foxglove's omgidl reader)
+  nodejs
 )
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+NPM_DIR="$ROOT/tests/recorder/js"
 
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# npm: Debian's package of that name, unless the installed nodejs brings its own.
+command -v npm >/dev/null 2>&1 || missing+=(npm)
+# The pinned npm packages are stale when node_modules is missing or older than the lock file.
+npm_stale() { [ ! -f "$NPM_DIR/node_modules/.package-lock.json" ] || [ "$NPM_DIR/package-lock.json" -nt "$NPM_DIR/node_modules/.package-lock.json" ]; }
+npm_install() {
+  echo "install-deps: npm ci in ${NPM_DIR#"$ROOT"/}"
+  (cd "$NPM_DIR" && npm ci --no-audit --no-fund --loglevel=error)
+}
 
 if [ "${1:-}" = "--check" ]; then
-  printf '%s\n' "${missing[@]}"
+  if [ ${#missing[@]} -gt 0 ]; then printf '%s\n' "${missing[@]}"; fi
+  if npm_stale; then echo "npm:${NPM_DIR#"$ROOT"/}"; fi
   exit 0
 fi
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#PACKAGES[@]} packages present"
+  if npm_stale; then npm_install; fi
   exit 0
 fi
 if [ "$(id -u)" -ne 0 ]; then
@@ -44,3 +60,4 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if npm_stale; then npm_install; fi

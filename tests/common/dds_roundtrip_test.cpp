@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "mpgc/dds/dds.hpp"
+#include "mpgc/filler.hpp"
 #include "mpgc/msg/control.hpp"
 #include "mpgc/msg/core.hpp"
 #include "mpgc/msg/nav.hpp"
@@ -23,49 +24,7 @@ namespace msg = mpgc::msg;
 
 namespace {
 
-template <class T, class = void>
-struct is_message : std::false_type {};
-template <class T>
-struct is_message<T, std::void_t<typename T::CType>> : std::true_type {};
-
-// Fills every field with a seeded value: numbers across their range, strings with spaces, UTF-8
-// and a long one, sequences of 0..4 elements (nested sequences included).
-struct Filler {
-  std::mt19937_64& rng;
-  template <class T>
-  void operator()(const char*, T& v) { fill(v); }
-
-  template <class T>
-  void fill(T& v) {
-    if constexpr (std::is_same_v<T, bool>) {
-      v = (rng() & 1u) != 0;
-    } else if constexpr (std::is_floating_point_v<T>) {
-      v = static_cast<T>(std::uniform_real_distribution<double>(-1e7, 1e7)(rng));
-    } else if constexpr (std::is_integral_v<T>) {
-      v = static_cast<T>(rng());
-    } else if constexpr (std::is_enum_v<T>) {
-      v = static_cast<T>(rng() % 2);  // every enum has at least two enumerators
-    } else if constexpr (std::is_same_v<T, std::string>) {
-      static const char* samples[] = {"", "ship_simulator", "with spaces and \"quotes\"", "Ærøskøbing ⚓ 北",
-                                      "line\nbreak\ttab"};
-      const auto k = rng() % 6;
-      v = k < 5 ? samples[k] : std::string(3000, static_cast<char>('a' + rng() % 26));
-    } else if constexpr (is_message<T>::value) {
-      visit_fields(v, *this);
-    } else {
-      fill_container(v);
-    }
-  }
-  template <class E>
-  void fill_container(std::vector<E>& v) {
-    v.resize(rng() % 5);
-    for (auto& e : v) fill(e);
-  }
-  template <class E, std::size_t N>
-  void fill_container(std::array<E, N>& v) {
-    for (auto& e : v) fill(e);
-  }
-};
+using mpgc::testing::Filler;
 
 template <class Pred>
 bool wait_for(Pred pred, double seconds) {
