@@ -1,0 +1,50 @@
+// Writes serialised samples as they were recorded (dds_takecdr's bytes: the 4-byte encapsulation
+// header and the XCDR body) on a topic, for replay. Cyclone 0.10 has no public call for a writer's
+// sertype, so the constructor takes it from one default sample written and read back inside the
+// participant, on a partition no other reader is in.
+//
+//   auto w = dds::RawWriter::make<msg::NavState>(participant, "nav/own_state", dds::QosProfile::state());
+//   if (!w.write(bytes.data(), bytes.size())) ...  // not a valid sample of the type
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "mpgc/dds/dds.hpp"
+
+struct ddsi_serdata;
+
+namespace mpgc::dds {
+
+class RawWriter {
+ public:
+  template <class T>
+  static RawWriter make(const Participant& p, const std::string& topic, const QosProfile& profile) {
+    Arena arena;
+    typename T::CType c{};
+    to_c(T{}, c, arena);
+    return RawWriter(p, Entity(check(dds_create_topic(p.handle(), &T::descriptor(), topic.c_str(), nullptr, nullptr),
+                                     "create topic '" + topic + "'")),
+                     topic, profile, &c);
+  }
+  RawWriter(RawWriter&&) noexcept;
+  RawWriter& operator=(RawWriter&&) noexcept;
+  ~RawWriter();
+
+  // False (nothing written) when the bytes are not a sample of the topic's type.
+  bool write(const void* data, std::size_t size);
+  uint32_t matched() const;
+  // Until every reliable reader has acknowledged what was written, at most timeout_s.
+  void wait_for_acks(double timeout_s) const;
+  const std::string& topic() const { return topic_; }
+
+ private:
+  RawWriter(const Participant& p, Entity topic, const std::string& name, const QosProfile& profile,
+            const void* default_sample);
+  std::string topic_;
+  Entity topic_entity_, writer_;
+  ddsi_serdata* type_sample_ = nullptr;  // holds the sertype the bytes are turned into samples of
+};
+
+}  // namespace mpgc::dds
