@@ -57,16 +57,30 @@ RawWriter::~RawWriter() {
   if (type_sample_ != nullptr) ddsi_serdata_unref(type_sample_);
 }
 
-bool RawWriter::write(const void* data, std::size_t size) {
-  if (size < 4 || size > UINT32_MAX) return false;
+namespace {
+// Cyclone checks (normalises) the bytes against the type here: nullptr for a malformed sample.
+ddsi_serdata* serdata_of(const ddsi_serdata* type_sample, const void* data, std::size_t size) {
+  if (size < 4 || size > UINT32_MAX) return nullptr;
   ddsrt_iovec_t iov;
   iov.iov_base = const_cast<void*>(data);
   iov.iov_len = static_cast<ddsrt_iov_len_t>(size);
-  // Cyclone checks (normalises) the bytes against the type here: nullptr for a malformed sample.
-  ddsi_serdata* sd = ddsi_serdata_from_ser_iov(type_sample_->type, SDK_DATA, 1, &iov, size);
+  return ddsi_serdata_from_ser_iov(type_sample->type, SDK_DATA, 1, &iov, size);
+}
+}  // namespace
+
+bool RawWriter::write(const void* data, std::size_t size) {
+  ddsi_serdata* sd = serdata_of(type_sample_, data, size);
   if (sd == nullptr) return false;
   check(dds_writecdr(writer_.handle(), sd), "write on '" + topic_ + "'");  // takes the reference
   return true;
+}
+
+bool RawWriter::to_c_sample(const void* data, std::size_t size, void* sample) const {
+  ddsi_serdata* sd = serdata_of(type_sample_, data, size);
+  if (sd == nullptr) return false;
+  const bool ok = ddsi_serdata_to_sample(sd, sample, nullptr, nullptr);
+  ddsi_serdata_unref(sd);
+  return ok;
 }
 
 void RawWriter::wait_for_acks(double timeout_s) const {

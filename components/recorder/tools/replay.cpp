@@ -1,4 +1,5 @@
-// mpgc_replay FILE.mcap [--topics a,b] [--factor X] [--domain N] [--reliable] [--wait-subscribers S]:
+// mpgc_replay FILE.mcap [--topics a,b] [--factor X] [--domain N] [--reliable] [--wait-subscribers S]
+//             [--lockstep P1,P2,...]:
 // puts the recorded topics of a recording back on the bus, the bytes as they were recorded (each
 // sample exactly as its writer sent it), paced by their log times at X times the recorded speed
 // (0: as fast as possible). Only topics of topics.hpp with their own type and QoS; the Map panel's
@@ -6,11 +7,19 @@
 // type is counted and skipped; the summary lists per topic what was replayed and refused, and the
 // exit code is 1 when anything was refused or the file is unreadable. Messages go out in file order
 // (the order the recorder took them), so memory stays bounded for recordings of any length.
+//
+// --lockstep: replay is the clock's publisher, as the simulator is in a lockstep run. The recorded
+// Clock steps go out in order and each waits until every named participant has acknowledged it;
+// before a step, the selected topics' samples up to its time (the simulator writes a step's data
+// before its Clock). The selected topics are loaded into memory, sorted by log time. Sensors and
+// own state replayed so into the autonomy give its recorded tracks and plans again (the test).
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <functional>
 #include <cstdio>
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -23,6 +32,7 @@
 #include "mpgc/dds/message_types.hpp"
 #include "mpgc/dds/raw_writer.hpp"
 #include "mpgc/recorder/mcap.hpp"
+#include "mpgc/ship_simulator/lockstep.hpp"
 #include "mpgc/text/list.hpp"
 #include "mpgc/topics.hpp"
 
@@ -38,13 +48,85 @@ struct Stopped {};
 struct Replayed {
   std::unique_ptr<dds::RawWriter> writer;
   uint64_t written = 0, refused = 0;
+  bool write(const mcap::Message& m) {
+    if (writer->write(m.data.data(), m.data.size())) return ++written, true;
+    if (refused++ < 3)
+      std::fprintf(stderr, "mpgc replay: '%s': message %u (log time %llu ns) is not a sample of its type, skipped\n",
+                   writer->topic().c_str(), m.sequence, static_cast<unsigned long long>(m.log_time));
+    return false;
+  }
+};
+
+bool wait_for(const std::function<bool()>& done, double timeout_s) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (!done() && !g_stop && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  return done();
+}
+
+// The lockstep replay: every Clock step acknowledged by the participants before the next.
+class LockstepClock {
+ public:
+  LockstepClock(dds::Participant& p, const std::vector<std::string>& participants, double hang_s)
+      : barrier_(participants),
+        n_(participants.size()),
+        hang_s_(hang_s),
+        clock_topic_(p, topics::kClock),
+        ack_topic_(p, topics::kStepAck),
+        clock_(p, clock_topic_, dds::QosProfile::command(16)),
+        acks_(p, ack_topic_, dds::QosProfile::command(64)),
+        decoder_(dds::RawWriter::make<mpgc::msg::Clock>(p, "mpgc/replay/clock_decoder", dds::QosProfile::command(1))) {}
+
+  // Every participant's ack writer and clock reader are there.
+  bool ready() const { return acks_.matched() >= n_ && clock_.matched() >= n_; }
+  std::string waiting_for() const { return mpgc::ship_simulator::join_names(barrier_.missing()); }
+
+  // Publishes the recorded Clock (as this lockstep's) and waits for its acknowledgements; false
+  // (naming who) when a participant did not acknowledge within the hang time.
+  bool step(const mcap::Message& m, std::string* why) {
+    auto c = decoder_.decode<mpgc::msg::Clock>(m.data.data(), m.data.size());
+    if (!c) {
+      *why = "recorded Clock " + std::to_string(m.sequence) + " is not a Clock sample";
+      return false;
+    }
+    c->lockstep = true;
+    barrier_.begin(c->step);
+    const auto start = std::chrono::steady_clock::now();
+    auto sent = start;
+    clock_.write(*c);
+    for (;;) {
+      for (auto& a : acks_.take()) barrier_.ack(a.value.component, a.value.step);
+      if (barrier_.complete()) return ++steps_, true;
+      if (g_stop) return *why = "stopped", false;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - start > std::chrono::duration<double>(hang_s_)) {
+        *why = "step " + std::to_string(c->step) + ": no acknowledgement from " + waiting_for() + " within " +
+               std::to_string(hang_s_) + " s";
+        return false;
+      }
+      if (now - sent > std::chrono::seconds(1)) clock_.write(*c), sent = now;  // a lost Clock or ack
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
+  uint64_t steps() const { return steps_; }
+
+ private:
+  mpgc::ship_simulator::LockstepBarrier barrier_;
+  uint32_t n_;
+  double hang_s_;
+  dds::Topic<mpgc::msg::Clock> clock_topic_;
+  dds::Topic<mpgc::msg::StepAck> ack_topic_;
+  dds::Writer<mpgc::msg::Clock> clock_;
+  dds::Reader<mpgc::msg::StepAck> acks_;
+  dds::RawWriter decoder_;  // its sertype reads the recorded Clock bytes
+  uint64_t steps_ = 0;
 };
 
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mpgc replay: a recording's topics back on the bus with their timing"};
-  std::string file, topic_list;
+  std::string file, topic_list, lockstep_list;
+  double hang_s = 60.0;
   double factor = 1.0, wait_s = 0.0;
   int domain = 0;
   bool reliable = false, quiet = false;
@@ -55,6 +137,8 @@ int main(int argc, char** argv) {
   app.add_flag("--reliable", reliable, "state topics reliable too (as in a simulated run), so no sample is lost");
   app.add_option("--wait-subscribers", wait_s, "[s] wait up to this long for a reader on every replayed topic before the first sample")
       ->check(CLI::Range(0.0, 3600.0));
+  app.add_option("--lockstep", lockstep_list, "comma-separated participants: replay is the lockstep clock, each step waits for their acks");
+  app.add_option("--hang-timeout", hang_s, "[s] --lockstep: give up when a step is not acknowledged this long")->check(CLI::Range(0.1, 3600.0));
   app.add_flag("--quiet", quiet, "only the summary");
   CLI11_PARSE(app, argc, argv);
 
@@ -67,7 +151,14 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  const std::vector<std::string> participants = mpgc::text::split_list(lockstep_list);
+  const bool lockstep = !participants.empty();
+  if (lockstep && wanted.empty()) {
+    std::fprintf(stderr, "mpgc replay: --lockstep needs --topics: what the clock's publisher wrote (e.g. nav/own_state,sensors/ais,sensors/radar)\n");
+    return 2;
+  }
   auto selected = [&](const std::string& t) {
+    if (lockstep && (t == topics::kClock || t == topics::kStepAck)) return false;  // this replay's own
     if (wanted.empty()) return true;
     for (const auto& w : wanted)
       if (w == t) return true;
@@ -116,19 +207,51 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mpgc replay: not replayed (not a DDS topic of topics.hpp): %s\n", s.c_str());
     }
     if (wait_s > 0) {
-      const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_s);
       auto all = [&] {
         for (auto& [id, r] : by_channel)
           if (r.writer->matched() == 0) return false;
         return true;
       };
-      while (!all() && !g_stop && std::chrono::steady_clock::now() < end) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      if (!all()) {
+      if (!wait_for(all, wait_s)) {
         for (auto& [id, r] : by_channel)
           if (r.writer->matched() == 0) std::fprintf(stderr, "mpgc replay: no reader on '%s' after %.1f s\n", r.writer->topic().c_str(), wait_s);
       }
     }
 
+    if (lockstep) {
+      uint16_t clock_channel = 0;
+      bool have_clock = false;
+      for (const auto& [id, ch] : info.channels)
+        if (ch.topic == topics::kClock) clock_channel = id, have_clock = true;
+      if (!have_clock) {
+        std::fprintf(stderr, "mpgc replay: %s: --lockstep needs the recorded clock, and the file has none\n", file.c_str());
+        return 1;
+      }
+      LockstepClock clock(part, participants, hang_s);
+      if (!wait_for([&] { return clock.ready(); }, std::max(wait_s, 30.0))) {
+        std::fprintf(stderr, "mpgc replay: the lockstep participants are not all there after %.0f s\n", std::max(wait_s, 30.0));
+        return 1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));  // discovery settles, as the simulator's start gate
+      // Each step's samples before its Clock: by log time, a Clock after the samples of its time.
+      std::vector<mcap::Message> msgs;
+      mcap::read_messages(file, [](const mcap::Channel&, const mcap::Schema&) {}, [&](const mcap::Message& m) {
+        if (m.channel_id == clock_channel || by_channel.count(m.channel_id)) msgs.push_back(m);
+      });
+      std::stable_sort(msgs.begin(), msgs.end(), [&](const mcap::Message& a, const mcap::Message& b) {
+        return a.log_time < b.log_time || (a.log_time == b.log_time && a.channel_id != clock_channel && b.channel_id == clock_channel);
+      });
+      std::string why;
+      for (const auto& m : msgs) {
+        if (m.channel_id != clock_channel) {
+          by_channel.at(m.channel_id).write(m);
+        } else if (!clock.step(m, &why)) {
+          std::fprintf(stderr, "mpgc replay: %s\n", why.c_str());
+          return 1;
+        }
+      }
+      if (!quiet) std::fprintf(stderr, "mpgc replay: %llu lockstep steps acknowledged\n", static_cast<unsigned long long>(clock.steps()));
+    } else {
     // Pacing: a message goes out at its log time's offset from the first, divided by the factor;
     // one stamped before the latest so far goes out at once (the recorder took it in this order).
     const auto wall0 = std::chrono::steady_clock::now();
@@ -146,16 +269,11 @@ int main(int argc, char** argv) {
           std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                     std::chrono::duration<double>(offset_s)));
         }
-        Replayed& r = it->second;
-        if (r.writer->write(m.data.data(), m.data.size())) {
-          ++r.written;
-        } else if (r.refused++ < 3) {
-          std::fprintf(stderr, "mpgc replay: '%s': message %u (log time %llu ns) is not a sample of its type, skipped\n",
-                       r.writer->topic().c_str(), m.sequence, static_cast<unsigned long long>(m.log_time));
-        }
+        it->second.write(m);
       });
     } catch (const Stopped&) {
       std::fprintf(stderr, "mpgc replay: stopped\n");
+    }
     }
     // Reliable samples still in flight reach the readers before the writers go.
     for (auto& [id, r] : by_channel) r.writer->wait_for_acks(5.0);

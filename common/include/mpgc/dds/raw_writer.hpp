@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "mpgc/dds/dds.hpp"
@@ -34,12 +35,23 @@ class RawWriter {
 
   // False (nothing written) when the bytes are not a sample of the topic's type.
   bool write(const void* data, std::size_t size);
+  // The sample the bytes hold, if they are one of T, the topic's type (make<T>'s).
+  template <class T>
+  std::optional<T> decode(const void* data, std::size_t size) const {
+    typename T::CType c{};
+    if (!to_c_sample(data, size, &c)) return std::nullopt;
+    T v;
+    from_c(c, v);
+    dds_sample_free(&c, &T::descriptor(), DDS_FREE_CONTENTS);
+    return v;
+  }
   uint32_t matched() const;
   // Until every reliable reader has acknowledged what was written, at most timeout_s.
   void wait_for_acks(double timeout_s) const;
   const std::string& topic() const { return topic_; }
 
  private:
+  bool to_c_sample(const void* data, std::size_t size, void* sample) const;
   RawWriter(const Participant& p, Entity topic, const std::string& name, const QosProfile& profile,
             const void* default_sample);
   std::string topic_;
