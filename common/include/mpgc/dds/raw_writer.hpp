@@ -22,9 +22,10 @@ class RawWriter {
  public:
   template <class T>
   static RawWriter make(const Participant& p, const std::string& topic, const QosProfile& profile) {
+    const T v{};  // the C sample points into it
     Arena arena;
     typename T::CType c{};
-    to_c(T{}, c, arena);
+    to_c(v, c, arena);
     return RawWriter(p, Entity(check(dds_create_topic(p.handle(), &T::descriptor(), topic.c_str(), nullptr, nullptr),
                                      "create topic '" + topic + "'")),
                      topic, profile, &c);
