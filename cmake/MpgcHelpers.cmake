@@ -52,7 +52,8 @@ function(mpgc_add_gtest)
     "  set_tests_properties(\${${T_NAME}_TESTS} PROPERTIES LABELS \"${T_LABELS}\" TIMEOUT ${T_TIMEOUT}${serial}\n"
     "    ENVIRONMENT \"${env}\")\n"
     "  foreach(t ${T_SERIAL_TESTS})\n"
-    "    if(t IN_LIST ${T_NAME}_TESTS)\n"
+    "    list(FIND ${T_NAME}_TESTS \${t} at)\n"  # ctest runs this without policy CMP0057 (IN_LIST)
+    "    if(at GREATER -1)\n"
     "      set_tests_properties(\${t} PROPERTIES RUN_SERIAL TRUE)\n"
     "    else()\n"
     "      message(FATAL_ERROR \"${T_NAME}: SERIAL_TESTS names \${t}, not one of its tests\")\n"
