@@ -85,6 +85,7 @@ struct TypedSide : Side {
     T s;
     mpgc::testing::Filler{rng}.fill(s);
     writer.write(s);
+    dds_wait_for_acks(writer.handle(), DDS_SECS(2));  // a keep-last writer would replace a sample not yet delivered
     sent.push_back(s);
     return to_json(s);
   }
@@ -158,7 +159,6 @@ nlohmann::json record_filled(const std::string& file, dds::Participant& part, Si
     nlohmann::json& list = expected[name] = nlohmann::json::array();
     for (int k = 0; k < kPerTopic; ++k) {
       list.push_back(s->write_filled(rng));
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
   }
   std::this_thread::sleep_for(std::chrono::seconds(1));  // the recorder polls every few ms

@@ -47,9 +47,13 @@ struct Stopped {};
 
 struct Replayed {
   std::unique_ptr<dds::RawWriter> writer;
+  bool acked = false;  // --reliable: each sample acknowledged before the next (a keep-last writer would replace it)
   uint64_t written = 0, refused = 0;
   bool write(const mcap::Message& m) {
-    if (writer->write(m.data.data(), m.data.size())) return ++written, true;
+    if (writer->write(m.data.data(), m.data.size())) {
+      if (acked) writer->wait_for_acks(1.0);
+      return ++written, true;
+    }
     if (refused++ < 3)
       std::fprintf(stderr, "mpgc replay: '%s': message %u (log time %llu ns) is not a sample of its type, skipped\n",
                    writer->topic().c_str(), m.sequence, static_cast<unsigned long long>(m.log_time));
@@ -134,7 +138,8 @@ int main(int argc, char** argv) {
   app.add_option("--topics", topic_list, "comma-separated topics to replay (default: every recorded topic of topics.hpp)");
   app.add_option("--factor", factor, "[-] speed over the recorded one; 0: as fast as possible")->check(CLI::Range(0.0, 1e6));
   app.add_option("--domain", domain, "DDS domain")->check(CLI::Range(0, 230));
-  app.add_flag("--reliable", reliable, "state topics reliable too (as in a simulated run), so no sample is lost");
+  app.add_flag("--reliable", reliable,
+               "no sample lost: state topics reliable too (as in a simulated run), each sample acknowledged by every reader before the next");
   app.add_option("--wait-subscribers", wait_s, "[s] wait up to this long for a reader on every replayed topic before the first sample")
       ->check(CLI::Range(0.0, 3600.0));
   app.add_option("--lockstep", lockstep_list, "comma-separated participants: replay is the lockstep clock, each step waits for their acks");
@@ -186,6 +191,7 @@ int main(int argc, char** argv) {
       dds::QosProfile profile = dds::QosProfile::by_name(ti->qos);
       if (reliable) profile = profile.deterministic();
       Replayed r;
+      r.acked = reliable;
       mpgc::msg::with_message_type(ti->type, [&](auto* tag) {
         using T = std::remove_pointer_t<decltype(tag)>;
         r.writer = std::make_unique<dds::RawWriter>(dds::RawWriter::make<T>(part, ch.topic, profile));
