@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
   app.add_option("--factor", factor, "[-] speed over the recorded one; 0: as fast as possible")->check(CLI::Range(0.0, 1e6));
   app.add_option("--domain", domain, "DDS domain")->check(CLI::Range(0, 230));
   app.add_flag("--reliable", reliable,
-               "no sample lost: state topics reliable too (as in a simulated run), each sample acknowledged by every reader before the next");
+               "no sample lost: state topics reliable too (as in a simulated run), each sample acknowledged by every reader before the next (in lockstep: each step)");
   app.add_option("--wait-subscribers", wait_s, "[s] wait up to this long for a reader on every replayed topic before the first sample")
       ->check(CLI::Range(0.0, 3600.0));
   app.add_option("--lockstep", lockstep_list, "comma-separated participants: replay is the lockstep clock, each step waits for their acks");
@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
       dds::QosProfile profile = dds::QosProfile::by_name(ti->qos);
       if (reliable) profile = profile.deterministic();
       Replayed r;
-      r.acked = reliable;
+      r.acked = reliable && !lockstep;  // in lockstep each step's samples are taken before the next step
       mpgc::msg::with_message_type(ti->type, [&](auto* tag) {
         using T = std::remove_pointer_t<decltype(tag)>;
         r.writer = std::make_unique<dds::RawWriter>(dds::RawWriter::make<T>(part, ch.topic, profile));
