@@ -40,9 +40,7 @@ class RawSide {
     std::vector<std::string> all;
     for (const auto& t : topics::kAll) all.push_back(t.name);
     for (const auto& name : rec::select_topics(p.topics, all)) {
-      const topics::Info* info = nullptr;
-      for (const auto& t : topics::kAll)
-        if (name == t.name) info = &t;
+      const topics::Info* info = topics::find(name);
       const msg::TypeInfo* type = msg::find_type(info->type);
       if (type == nullptr) throw std::runtime_error(std::string("topics.hpp: type ") + info->type + " of " + name + " is not in idl/");
       dds::QosProfile profile = dds::QosProfile::by_name(info->qos);

@@ -68,10 +68,7 @@ void flatten(const T& v, std::vector<std::string>& out) {
 class RawReader {
  public:
   RawReader(const dds::Participant& p, const std::string& topic) : name_(topic) {
-    const topics::Info* info = nullptr;
-    for (const auto& t : topics::kAll)
-      if (topic == t.name) info = &t;
-    const auto* type = mpgc::msg::find_type(info->type);
+    const auto* type = mpgc::msg::find_type(topics::find(topic)->type);
     topic_ = dds::Entity(dds::check(dds_create_topic(p.handle(), type->descriptor, topic.c_str(), nullptr, nullptr), "topic"));
     dds_qos_t* q = dds_create_qos();
     dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
@@ -168,9 +165,7 @@ TEST(ReplayLockstep, RecordedSensorsGiveTheRecordedTracksAndPlansAgain) {
     // The run ends during a step whose outputs the recorder may not have taken: one more at most.
     EXPECT_GE(got.size(), want.size());
     EXPECT_LE(got.size(), want.size() + 1);
-    const topics::Info* info = nullptr;
-    for (const auto& i : topics::kAll)
-      if (t == i.name) info = &i;
+    const topics::Info* info = topics::find(t);
     mpgc::msg::with_message_type(info->type, [&](auto* tag) {
       using T = std::remove_pointer_t<decltype(tag)>;
       auto decoder = dds::RawWriter::make<T>(part, "mpgc/test/decoder", dds::QosProfile::command(1));

@@ -1,6 +1,8 @@
 // Every topic of the system, its type and QoS profile, in one place (design.md data flow).
 #pragma once
 
+#include <string_view>
+
 namespace mpgc::topics {
 
 inline constexpr const char* kClock = "clock";  // reliable, keep-last 16
@@ -50,5 +52,12 @@ inline constexpr Info kAll[] = {
     {kGuidanceStatus, "mpgc::msg::GuidanceStatus", "state"},
     {kFaults, "mpgc::msg::FaultCommand", "command"},
 };
+
+// The entry of a topic by name, or nullptr when topics.hpp has none.
+inline const Info* find(std::string_view name) {
+  for (const auto& t : kAll)
+    if (name == t.name) return &t;
+  return nullptr;
+}
 
 }  // namespace mpgc::topics

@@ -13,13 +13,12 @@
 // before a step, the selected topics' samples up to its time (the simulator writes a step's data
 // before its Clock). The selected topics are loaded into memory, sorted by log time. Sensors and
 // own state replayed so into the autonomy give its recorded tracks and plans again (the test).
+#include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cmath>
 #include <csignal>
-#include <functional>
 #include <cstdio>
-#include <algorithm>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -149,9 +148,7 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> wanted = mpgc::text::split_list(topic_list);
   for (const auto& t : wanted) {
-    bool known = false;
-    for (const auto& i : topics::kAll) known = known || t == i.name;
-    if (!known) {
+    if (topics::find(t) == nullptr) {
       std::fprintf(stderr, "mpgc replay: --topics names '%s', not a topic of topics.hpp\n", t.c_str());
       return 2;
     }
@@ -179,9 +176,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> skipped;
     for (const auto& [id, ch] : info.channels) {
       const auto s = info.schemas.find(ch.schema_id);
-      const topics::Info* ti = nullptr;
-      for (const auto& i : topics::kAll)
-        if (ch.topic == i.name) ti = &i;
+      const topics::Info* ti = topics::find(ch.topic);
       if (!selected(ch.topic)) continue;
       if (ti == nullptr || s == info.schemas.end() || s->second.encoding != "omgidl" || ch.message_encoding != "cdr" ||
           s->second.name != ti->type) {
