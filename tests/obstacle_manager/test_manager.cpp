@@ -183,26 +183,27 @@ TEST(Aging, FreshListIsPublishedAsToday) {
   EXPECT_EQ(out.obstacles[0].x, today.x);
 }
 
-TEST(Aging, TrackOlderThanMaxAgeIsDroppedAndReportedOnce) {
+// situational_awareness decides a track's life while it speaks: a track it still lists after a long
+// sensor outage (coasting, position_std grown) is passed on, however old its last measurement;
+// only the list's own age (situational_awareness silent) drops obstacles.
+TEST(Aging, ATrackSituationalAwarenessStillListsIsKeptHoweverOld) {
   om::AgingParams a;
   a.max_age = 60;
   om::MovingObstacleFeed feed({}, a);
-  // A list with one young and one old track (SA keeps tracks longer than we do).
-  feed.receive(0, {target(1, 1.0), target(2, 61.0)}, 0);
+  feed.receive(0, {target(1, 1.0), target(2, 300.0)}, 0);
   auto out = feed.at(0);
-  ASSERT_EQ(out.obstacles.size(), 1u);
-  EXPECT_EQ(out.obstacles[0].id, 1u);
-  EXPECT_EQ(out.aged_out, std::vector<uint32_t>{2});
-  // The same list again: track 2 is still dropped but not counted again.
-  feed.receive(kS / 2, {target(1, 1.5), target(2, 61.5)}, kS / 2);
-  out = feed.at(kS / 2);
-  EXPECT_EQ(out.obstacles.size(), 1u);
+  ASSERT_EQ(out.obstacles.size(), 2u);
   EXPECT_TRUE(out.aged_out.empty());
-  // Track 2 measured again: published, and its next ageing is reported again.
-  feed.receive(kS, {target(2, 0.0)}, kS);
-  EXPECT_EQ(feed.at(kS).obstacles.size(), 1u);
-  feed.receive(2 * kS, {target(2, 70.0)}, 2 * kS);
-  EXPECT_EQ(feed.at(2 * kS).aged_out, std::vector<uint32_t>{2});
+  EXPECT_EQ(out.obstacles[1].position_std, om::to_moving_obstacle(target(2, 300.0), {}).position_std);
+  // The list ages out as a whole, each track reported once; listed again: published, and the next
+  // ageing reported again.
+  out = feed.at(61 * kS);
+  EXPECT_TRUE(out.obstacles.empty());
+  EXPECT_EQ(out.aged_out, (std::vector<uint32_t>{1, 2}));
+  EXPECT_TRUE(feed.at(62 * kS).aged_out.empty());
+  feed.receive(63 * kS, {target(2, 0.0)}, 63 * kS);
+  EXPECT_EQ(feed.at(63 * kS).obstacles.size(), 1u);
+  EXPECT_EQ(feed.at(124 * kS).aged_out, std::vector<uint32_t>{2});
 }
 
 TEST(Aging, SilenceIsReportedObstaclesArePredictedUntilMaxAgeThenEmpty) {
@@ -227,15 +228,14 @@ TEST(Aging, SilenceIsReportedObstaclesArePredictedUntilMaxAgeThenEmpty) {
   ASSERT_EQ(out.obstacles.size(), 2u);  // still predicted forward (from the list's stamp)
   EXPECT_EQ(out.t_valid_ns, t0);
   EXPECT_DOUBLE_EQ(out.obstacles[0].position_std, std::sqrt(25.0 + 36.0));
-  // Track 2 was 30 s old at the stamp: gone after 30 s more; track 1 after 60 s.
+  // Both are predicted until the list is max_age old, however old track 2 was at the stamp.
   out = feed.at(t0 + 31 * kS);
-  ASSERT_EQ(out.obstacles.size(), 1u);
-  EXPECT_EQ(out.obstacles[0].id, 1u);
-  EXPECT_EQ(out.aged_out, std::vector<uint32_t>{2});
-  EXPECT_EQ(feed.at(t0 + 60 * kS).obstacles.size(), 1u);  // exactly max_age: kept
+  ASSERT_EQ(out.obstacles.size(), 2u);
+  EXPECT_TRUE(out.aged_out.empty());
+  EXPECT_EQ(feed.at(t0 + 60 * kS).obstacles.size(), 2u);  // exactly max_age: kept
   out = feed.at(t0 + 61 * kS);
   EXPECT_TRUE(out.obstacles.empty());
-  EXPECT_EQ(out.aged_out, std::vector<uint32_t>{1});
+  EXPECT_EQ(out.aged_out, (std::vector<uint32_t>{1, 2}));
   EXPECT_EQ(out.t_valid_ns, t0 + 61 * kS);  // an empty list valid now, not the old stamp
   EXPECT_EQ(out.feed, om::MovingObstacleFeed::Feed::kSilent);
   // Tracks again: fresh.

@@ -138,7 +138,7 @@ TEST(ObstacleNode, SilenceIsToldOncePerChangeAndTheEmptiedListOnce) {
   ASSERT_EQ(n.size(), 4u);
   EXPECT_EQ(n[0].counter, "tracks_aged_out");
   EXPECT_EQ(n[0].count, 2u);
-  EXPECT_EQ(n[1].log, "track 3 dropped: last measured more than tracks.max_age = 60 s ago");
+  EXPECT_EQ(n[1].log, "track 3 dropped: no track list for more than tracks.max_age = 60 s");
   EXPECT_EQ(n[3].counter, "moving_emptied");
   out.aged_out.clear();
   EXPECT_TRUE(h.update(out, true).empty());

@@ -313,7 +313,7 @@ TEST(Tracker, SilentTargetCoastsThenIsDropped) {
   }
   EXPECT_TRUE(trk.tracks().empty());
   EXPECT_GE(trk.deleted_count(), 1u);
-  // advance() alone (own-ship stamps, no sweeps) also deletes an AIS track that fell silent.
+  // An AIS track falls silent while empty sweeps keep coming: deleted after delete_after as well.
   trk.set_origin({deg2rad(58.0), deg2rad(10.0)});
   sa::AisInput r;
   r.mmsi = 257000009;
@@ -324,10 +324,58 @@ TEST(Tracker, SilentTargetCoastsThenIsDropped) {
   r.sog = 3;
   ASSERT_TRUE(trk.add_ais(r, r.stamp_ns).empty());
   ASSERT_EQ(trk.tracks().size(), 1u);
-  trk.advance(80 * kSec);
+  for (int k = 62; k <= 91; ++k) trk.add_radar(scan(k * kSec, {}, 1000), k * kSec);
   EXPECT_EQ(trk.tracks().size(), 1u);
-  trk.advance(92 * kSec);
+  trk.add_radar(scan(92 * kSec, {}, 1000), 92 * kSec);
   EXPECT_TRUE(trk.tracks().empty());
+}
+
+// A total sensor outage (or a host cut) is no evidence that a ship has gone: its track coasts with a
+// growing covariance, keeps its id and takes the first report after the outage; only silence while
+// the sensors report deletes it. Before, every track was deleted delete_after into the outage and
+// the planner saw an empty sea when the sensors came back (stop-29 note).
+TEST(Tracker, ATotalOutageIsNoEvidenceOfAbsence) {
+  std::mt19937_64 rng(9);
+  sa::TrackerParams p;  // delete_after 60 s, max_input_gap 30 s
+  sa::Tracker trk(p);
+  Truth a{sa::Vec4(3000, 0, 0, 3)}, b{sa::Vec4(-4000, 1000, 2, 0)};
+  int64_t t = 0;
+  for (int k = 0; k <= 30; ++k, t += kSec) {
+    if (k > 0) step(a, 1, 1e-4, rng), step(b, 1, 1e-4, rng);
+    trk.add_radar(scan(t, {observe(a.x, 0, 0, 10, deg2rad(0.4), rng), observe(b.x, 0, 0, 10, deg2rad(0.4), rng)}), t);
+    trk.advance(t);
+  }
+  const auto before = confirmed(trk.tracks_at(t - kSec));
+  ASSERT_EQ(before.size(), 2u);
+  const uint32_t id_a = nearest(before, a.x)->id;
+  // 300 s without any sensor input; own navigation goes on.
+  for (int k = 0; k < 300; ++k, t += kSec) {
+    step(a, 1, 1e-4, rng), step(b, 1, 1e-4, rng);
+    trk.advance(t);
+  }
+  const auto blind = trk.tracks_at(t);
+  ASSERT_EQ(blind.size(), 2u);
+  for (const auto& tr : blind) {
+    EXPECT_EQ(tr.status, sa::TrackStatus::kCoasting);
+    EXPECT_GT(std::sqrt(tr.P(0, 0)), 5 * std::sqrt(before[0].P(0, 0)));  // the uncertainty grew
+  }
+  EXPECT_NEAR(trk.outage_s(t), 300.0 + 1.0 - 30.0, 1e-6);
+  EXPECT_EQ(trk.deleted_count(), 0u);
+  // The radar is back and sees only target a: a keeps its id; b goes after 60 s of sweeps without it.
+  int64_t b_gone = -1;
+  for (int k = 0; k < 70; ++k, t += kSec) {
+    step(a, 1, 1e-4, rng);
+    trk.add_radar(scan(t, {observe(a.x, 0, 0, 10, deg2rad(0.4), rng)}), t);
+    trk.advance(t);
+    const auto ts = confirmed(trk.tracks_at(t));
+    ASSERT_NE(nearest(ts, a.x), nullptr);
+    EXPECT_EQ(nearest(ts, a.x)->id, id_a) << k;
+    EXPECT_LT((nearest(ts, a.x)->x.head<2>() - a.x.head<2>()).norm(), 100.0) << k;
+    if (b_gone < 0 && ts.size() == 1) b_gone = k;
+  }
+  // b's silence counts from the first sweep (30 s of the outage gap counted, the rest not).
+  EXPECT_GE(b_gone, 29);
+  EXPECT_LE(b_gone, 32);
 }
 
 TEST(Tracker, ClutterIsNotConfirmed) {

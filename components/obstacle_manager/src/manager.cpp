@@ -168,7 +168,7 @@ MovingObstacleFeed::Received MovingObstacleFeed::receive(int64_t stamp_ns, const
     else if (why == "tentative") ++r.tentative;
     else if (!why.empty()) r.rejected.push_back(why);
     else {
-      held_.push_back({to_moving_obstacle(t, d_), t.since_update});
+      held_.push_back(to_moving_obstacle(t, d_));
       ids.insert(t.id);
     }
   }
@@ -193,13 +193,13 @@ MovingObstacleFeed::Output MovingObstacleFeed::at(int64_t now_ns) {
   // A stamp ahead of our clock (another host's clock) counts as age 0, never as negative age.
   const double dt = std::max(0.0, static_cast<double>(rt::ns_between(now_ns, *list_stamp_ns_)) / 1e9);
   out.t_valid_ns = *list_stamp_ns_;
-  for (const auto& h : held_) {
-    if (h.since_update + dt > a_.max_age) {
-      if (reported_.insert(h.o.id).second) out.aged_out.push_back(h.o.id);
+  for (const auto& o : held_) {
+    if (dt > a_.max_age) {
+      if (reported_.insert(o.id).second) out.aged_out.push_back(o.id);
       continue;
     }
-    reported_.erase(h.o.id);  // young again (a new measurement): report its next ageing too
-    out.obstacles.push_back(grow_uncertainty(h.o, dt, a_));
+    reported_.erase(o.id);  // listed again: report its next ageing too
+    out.obstacles.push_back(grow_uncertainty(o, dt, a_));
   }
   // Nothing left: an empty list valid now, not an old stamp nobody should extrapolate from.
   if (out.obstacles.empty()) out.t_valid_ns = now_ns;

@@ -44,8 +44,8 @@ void declare(rt::ParamSet& ps, NodeParams& p) {
   ps.add("moving.max_speed", &p.domain.max_speed, 40.0, "m/s", 1.0, 200.0, "faster tracks are rejected");
   ps.add("moving.tentative", &p.domain.tentative, false, "also pass on tentative tracks");
   ps.add("tracks.max_age", &p.aging.max_age, 60.0, "s", 0.1, 3600.0,
-         "drop a track whose last measurement is older (situational_awareness deletes at tracker.delete_after, "
-         "also 60 s by default)");
+         "drop the last list's obstacles when situational_awareness has been silent this long (while it "
+         "speaks, its tracker decides a track's life)");
   ps.add("tracks.timeout", &p.aging.timeout, 5.0, "s", 0.1, 3600.0,
          "no sa/tracks for this long: health degraded, the last obstacles are predicted on until tracks.max_age");
   ps.add("tracks.speed_std", &p.aging.speed_std, 1.0, "m/s", 0.0, 50.0,
@@ -163,7 +163,7 @@ std::vector<TracksHealth::Note> TracksHealth::update(const MovingObstacleFeed::O
   if (!out.aged_out.empty()) {
     notes.push_back({false, "", "tracks_aged_out", out.aged_out.size(), std::nullopt});
     for (const uint32_t id : out.aged_out)
-      notes.push_back({false, fmt::format("track {} dropped: last measured more than tracks.max_age = {} s ago", id, a_.max_age),
+      notes.push_back({false, fmt::format("track {} dropped: no track list for more than tracks.max_age = {} s", id, a_.max_age),
                        "", 1, std::nullopt});
   }
   // Silence: explicit, once per change. The last obstacles go on (their uncertainty growing)

@@ -29,8 +29,11 @@ void declare(rt::ParamSet& ps, NodeParams& p) {
   ps.add("tracker.confirm_m", &t.confirm_m, 3, "-", 1, 32, "M of M-of-N confirmation");
   ps.add("tracker.confirm_n", &t.confirm_n, 5, "-", 1, 32, "N of M-of-N confirmation");
   ps.add("tracker.coast_after", &t.coast_after, 10.0, "s", 0.1, 3600.0, "confirmed track reported coasting after");
-  ps.add("tracker.delete_after", &t.delete_after, 60.0, "s", 0.1, 3600.0, "track deleted when silent this long");
+  ps.add("tracker.delete_after", &t.delete_after, 60.0, "s", 0.1, 3600.0,
+         "track deleted when silent this long while the sensors report");
   ps.add("tracker.tentative_timeout", &t.tentative_timeout, 15.0, "s", 0.1, 3600.0, "tentative track deleted after");
+  ps.add("tracker.max_input_gap", &t.max_input_gap, 30.0, "s", 0.1, 3600.0,
+         "inputs further apart: a sensor outage, not counted as silence of any track");
   ps.add("tracker.max_future", &t.max_future, 1.0, "s", 0.0, 3600.0, "stamps further in the future are refused");
   ps.add("tracker.max_lag", &t.max_lag, 10.0, "s", 0.0, 3600.0, "stamps older than the newest by more are refused");
   ps.add("tracker.max_contacts", &t.max_contacts, 5000, "-", 1, 1000000, "larger radar sweeps are refused");

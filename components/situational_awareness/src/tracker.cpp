@@ -52,6 +52,7 @@ void TrackerParams::validate() const {
   require(pos(coast_after), "coast_after", "must be finite and > 0 s");
   require(pos(delete_after) && delete_after >= coast_after, "delete_after", "must be finite and >= coast_after");
   require(pos(tentative_timeout), "tentative_timeout", "must be finite and > 0 s");
+  require(pos(max_input_gap), "max_input_gap", "must be finite and > 0 s");
   require(std::isfinite(max_future) && max_future >= 0.0, "max_future", "must be finite and >= 0 s");
   require(std::isfinite(max_lag) && max_lag >= 0.0, "max_lag", "must be finite and >= 0 s");
   require(max_contacts >= 1, "max_contacts", "must be >= 1");
@@ -133,6 +134,7 @@ Track& Tracker::start_track(const Vec4& x, const Mat4& P, int64_t t_ns) {
   t.x = x;
   t.P = P;
   t.t_ns = t.born_ns = t.updated_ns = t_ns;
+  t.outage_at_update_ns = outage_until(t_ns);
   t.length = std::nan("");
   tracks_.push_back(t);
   return tracks_.back();
@@ -161,6 +163,22 @@ void Tracker::update(Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& 
   t.P = IKH * t.P * IKH.transpose() + K * Rx * K.transpose();  // Joseph form: stays symmetric PSD
   t.P = 0.5 * (t.P + t.P.transpose());
   t.updated_ns = std::max(t.updated_ns, t_ns);
+  t.outage_at_update_ns = outage_until(t.updated_ns);
+}
+
+void Tracker::note_input(int64_t stamp_ns) {
+  if (have_input_ && stamp_ns <= last_input_ns_) return;  // out of sequence: inside a counted span
+  if (have_input_) outage_ns_ = outage_until(stamp_ns);
+  last_input_ns_ = stamp_ns;
+  have_input_ = true;
+}
+
+int64_t Tracker::outage_until(int64_t t_ns) const {
+  if (!have_input_ || t_ns <= last_input_ns_) return outage_ns_;
+  // In double and saturated: stamps from anywhere (a fuzzed 9.2e18 ns) must not overflow int64.
+  const double gap = static_cast<double>(t_ns) - static_cast<double>(last_input_ns_);
+  const double total = static_cast<double>(outage_ns_) + std::max(0.0, gap - p_.max_input_gap * 1e9);
+  return static_cast<int64_t>(std::min(total, 4.0e18));
 }
 
 std::vector<Rejection> Tracker::add_ais(const AisInput& r, int64_t receive_ns) {
@@ -195,6 +213,7 @@ std::vector<Rejection> Tracker::add_ais(const AisInput& r, int64_t receive_ns) {
   }
   now_ns_ = have_time_ ? std::max(now_ns_, r.stamp_ns) : r.stamp_ns;
   have_time_ = true;
+  note_input(r.stamp_ns);
 
   Eigen::VectorXd z(has_vel ? 4 : 2);
   Eigen::MatrixXd H = Eigen::MatrixXd::Identity(z.size(), 4);
@@ -266,6 +285,7 @@ std::vector<Rejection> Tracker::add_radar(const RadarScanInput& s, int64_t recei
   if (!check_time(s.stamp_ns, receive_ns, "radar", why)) return why;
   now_ns_ = have_time_ ? std::max(now_ns_, s.stamp_ns) : s.stamp_ns;
   have_time_ = true;
+  note_input(s.stamp_ns);
 
   // Valid contacts converted to absolute NED positions.
   std::vector<ConvertedContact> meas;
@@ -413,9 +433,13 @@ void Tracker::advance(int64_t stamp_ns) {
 
 void Tracker::delete_stale(int64_t t_ns) {
   const auto before = tracks_.size();
+  const int64_t outage = outage_until(t_ns);
   tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
                                [&](const Track& t) {
-                                 const int64_t silent = t_ns - t.updated_ns;
+                                 // Silence while the sensors reported: an outage is no evidence of absence.
+                                 const double silent =
+                                     (static_cast<double>(t_ns) - static_cast<double>(t.updated_ns)) -
+                                     static_cast<double>(outage - t.outage_at_update_ns);
                                  return t.status == TrackStatus::kTentative ? silent > to_ns(p_.tentative_timeout)
                                                                             : silent > to_ns(p_.delete_after);
                                }),

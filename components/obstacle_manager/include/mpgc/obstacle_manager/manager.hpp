@@ -85,12 +85,14 @@ struct MovingObstacleOut {
 std::string check_target(const TargetState& t, const DomainParams& p);
 MovingObstacleOut to_moving_obstacle(const TargetState& t, const DomainParams& p);
 
-// How old a track may get and how its uncertainty grows while nobody measures it (issue 15).
-// situational_awareness predicts its Kalman covariance to the list's stamp (so position_std
-// already grows with since_update there) and deletes a track silent for tracker.delete_after;
-// these cover the time after the stamp, which only the obstacle manager sees (no new list).
+// How long the last track list is used and how its uncertainty grows while nobody measures it
+// (issue 15). situational_awareness decides a track's life: it predicts the Kalman covariance to
+// the list's stamp (so position_std already grows with since_update there) and deletes a track
+// only after tracker.delete_after of silence while its sensors report (a coasting track in a
+// sensor outage is listed, its position_std growing). These cover the time after the stamp, which
+// only the obstacle manager sees: situational_awareness silent, no new list.
 struct AgingParams {
-  double max_age = 60.0;       // [s] a track whose last measurement is older is dropped
+  double max_age = 60.0;       // [s] the last list's obstacles are dropped when it is older
   double timeout = 5.0;        // [s] no track list for this long: the feed is silent
   double speed_std = 1.0;      // [m/s] velocity uncertainty of an unobserved target
   double radius_sigmas = 2.0;  // [-] the domain radius grows by this many times the sigma growth
@@ -133,13 +135,9 @@ class MovingObstacleFeed {
   bool has_list() const { return list_stamp_ns_.has_value(); }
 
  private:
-  struct Held {
-    MovingObstacleOut o;
-    double since_update;  // [s] at the list's stamp
-  };
   DomainParams d_;
   AgingParams a_;
-  std::vector<Held> held_;
+  std::vector<MovingObstacleOut> held_;
   std::optional<int64_t> list_stamp_ns_, arrival_ns_, first_call_ns_;
   std::set<uint32_t> reported_;  // ids already reported as aged out
 };

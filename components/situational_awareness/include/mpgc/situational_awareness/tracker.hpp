@@ -76,8 +76,12 @@ struct TrackerParams {
   int confirm_m = 3;            // [-] radar hits needed ...
   int confirm_n = 5;            // [-] ... within this many sweeps to confirm a tentative track
   double coast_after = 10.0;    // [s] a confirmed track without updates is reported as coasting
-  double delete_after = 60.0;   // [s] a track without updates is deleted
-  double tentative_timeout = 15.0;  // [s] a tentative track without updates is deleted
+  double delete_after = 60.0;   // [s] a track without updates while the sensors report is deleted
+  double tentative_timeout = 15.0;  // [s] a tentative track without updates is deleted (same rule)
+  // [s] inputs further apart than this mark a sensor outage: the time beyond it does not count as
+  // silence of any track (no sensor could have seen it), so tracks coast through a total outage
+  // or a host cut, their covariance growing, and are there to take the first reports after it.
+  double max_input_gap = 30.0;
   double max_future = 1.0;      // [s] stamps later than the receive time by more are refused
   double max_lag = 10.0;        // [s] reports older than the newest accepted stamp by more are refused
   int max_contacts = 5000;      // [-] a sweep with more contacts is refused as a whole
@@ -106,6 +110,7 @@ struct Track {
   int64_t born_ns = 0;      // [ns] stamp of the first measurement
   int64_t updated_ns = 0;   // [ns] stamp of the newest measurement used
   int64_t last_ais_ns = 0;  // [ns] stamp of the newest AIS report used (0: none)
+  int64_t outage_at_update_ns = 0;  // [ns] the tracker's outage total when it was last updated
   double length = 0.0;      // [m] NaN if unknown
   TrackStatus status = TrackStatus::kTentative;
   uint32_t hit_history = 0;  // radar sweeps, newest in bit 0: 1 = updated, 0 = missed
@@ -131,7 +136,9 @@ class Tracker {
   std::vector<Rejection> add_ais(const AisInput& r, int64_t receive_ns);
   std::vector<Rejection> add_radar(const RadarScanInput& s, int64_t receive_ns);
   // Moves the tracker's notion of "now" forward to a trusted sample stamp (e.g. own navigation)
-  // and deletes the tracks that have been silent too long. Earlier stamps are ignored.
+  // and deletes the tracks that have been silent too long while the sensors reported (a gap
+  // between inputs beyond max_input_gap is an outage and does not count). Earlier stamps are
+  // ignored.
   void advance(int64_t stamp_ns);
 
   // The time a track list can be valid at: now_ns, or the newest stamp taken if that is later.
@@ -147,6 +154,8 @@ class Tracker {
 
   const std::map<std::string, uint64_t>& rejected() const { return rejected_; }
   uint64_t deleted_count() const { return deleted_; }
+  // [s] sensor outage (time between inputs beyond max_input_gap) up to t_ns, the current one included.
+  double outage_s(int64_t t_ns) const { return static_cast<double>(outage_until(t_ns)) * 1e-9; }
 
  private:
   bool check_time(int64_t stamp_ns, int64_t receive_ns, const char* what, std::vector<Rejection>& why);
@@ -158,6 +167,9 @@ class Tracker {
   void update(Track& t, const Eigen::VectorXd& z, const Eigen::MatrixXd& H, const Eigen::MatrixXd& R,
               int64_t t_ns);
   void delete_stale(int64_t t_ns);
+  // An accepted input stamped stamp_ns: a gap beyond max_input_gap since the last one is outage.
+  void note_input(int64_t stamp_ns);
+  int64_t outage_until(int64_t t_ns) const;
 
   TrackerParams p_;
   std::optional<geo::LocalNed> ned_;
@@ -165,6 +177,9 @@ class Tracker {
   uint32_t next_id_ = 1;
   int64_t now_ns_ = 0;
   bool have_time_ = false;
+  int64_t last_input_ns_ = 0;  // [ns] newest accepted AIS or radar stamp
+  bool have_input_ = false;
+  int64_t outage_ns_ = 0;      // [ns] outage before last_input_ns_
   uint64_t deleted_ = 0;
   std::map<std::string, uint64_t> rejected_;
 };
