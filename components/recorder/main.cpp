@@ -1,7 +1,9 @@
 // mpgc_record: every topic of topics.hpp (or record.topics) into an MCAP file with the serialised
 // bytes as Cyclone delivers them (final types: XCDR1, which Foxglove decodes), one omgidl schema
 // per type, plus the Foxglove Map panel's channels. Log time = the run's clock: the sample's own
-// stamp, or for a type without one the latest stamp seen. Wiring only: recording.hpp decides.
+// stamp, or for a type without one the latest stamp seen. With live.port, the same channels go live
+// to Foxglove's WebSocket clients and the built-in web page (live_server.hpp), with view/state for
+// the page's panel. Wiring only: recording.hpp and live.hpp decide.
 #include <dds/dds.h>
 #include <dds/ddsi/ddsi_serdata.h>
 
@@ -16,6 +18,8 @@
 #include "mpgc/dds/dds.hpp"
 #include "mpgc/geo/geodesy.hpp"
 #include "mpgc/msg/all.hpp"
+#include "mpgc/recorder/live.hpp"
+#include "mpgc/recorder/live_server.hpp"
 #include "mpgc/recorder/recording.hpp"
 #include "mpgc/runtime/clock.hpp"
 #include "mpgc/runtime/component.hpp"
@@ -32,10 +36,37 @@ constexpr double kDeg = 180.0 / M_PI;
 
 uint64_t log_time(int64_t t_ns) { return t_ns > 0 ? static_cast<uint64_t>(t_ns) : 0; }
 
+// Where the samples go: the recording, and with live.port the live view's clients, on the same
+// channels (a channel handle is the recording's).
+class Sinks {
+ public:
+  explicit Sinks(const rec::RecorderParams& p) : recording(p) {
+    if (p.live_port > 0) live = std::make_unique<rec::LiveServer>(rec::LiveOptions{p.live_host, p.live_port, p.live_buffer_mib}, "mpgc_record");
+  }
+  int channel(const std::string& topic, const std::string& schema_name, const std::string& schema_encoding, const std::string& schema,
+              const std::string& message_encoding) {
+    const int h = recording.channel(topic, schema_name, schema_encoding, schema, message_encoding);
+    if (live) live_ids.push_back(live->add_channel({0, topic, message_encoding, schema_name, schema, schema_encoding}));
+    return h;
+  }
+  // To the live clients only (a failed recording does not stop the live view).
+  void to_live(int h, uint64_t log_time_ns, const void* data, size_t n) {
+    if (live) live->publish(live_ids[static_cast<size_t>(h)], log_time_ns, data, n);
+  }
+  // A channel that is live only (view/state): not in the recording, which stays as without live.
+  uint32_t live_channel(const std::string& topic, const std::string& schema_name, const char* schema) {
+    return live ? live->add_channel({0, topic, "json", schema_name, schema, "jsonschema"}) : 0;
+  }
+
+  rec::Recording recording;
+  std::unique_ptr<rec::LiveServer> live;
+  std::vector<uint32_t> live_ids;  // recording handle -> live channel id
+};
+
 // Every selected topic read as serialised samples on a participant of its own.
 class RawSide {
  public:
-  RawSide(mpgc::rt::Component& c, const rec::RecorderParams& p, rec::Recording& r, std::shared_ptr<spdlog::logger> log)
+  RawSide(mpgc::rt::Component& c, const rec::RecorderParams& p, Sinks& r, std::shared_ptr<spdlog::logger> log)
       : c_(c), rec_(r), part_(c.participant().domain_id()), log_(std::move(log)), sim_time_(p.sim_time) {
     std::vector<std::string> all;
     for (const auto& t : topics::kAll) all.push_back(t.name);
@@ -111,9 +142,10 @@ class RawSide {
         stamp_seen(stamp);
       }
     }
+    rec_.to_live(t.channel, log_time(stamp), buf_.data(), buf_.size());
     if (failed_) return;
     try {
-      rec_.write(t.channel, log_time(stamp), log_time(info.source_timestamp), buf_.data(), buf_.size());
+      rec_.recording.write(t.channel, log_time(stamp), log_time(info.source_timestamp), buf_.data(), buf_.size());
       if (!closing_) c_.count(t.counter);
     } catch (const std::exception& e) {
       failed_ = true;  // a full disk or a lost mount: say so and stop writing rather than throw each sample
@@ -123,7 +155,7 @@ class RawSide {
   }
 
   mpgc::rt::Component& c_;
-  rec::Recording& rec_;
+  Sinks& rec_;
   dds::Participant part_;
   std::vector<Raw> raws_;
   std::vector<unsigned char> buf_;
@@ -138,17 +170,19 @@ class RawSide {
 // The Map panel's channels, from the own state, tracks, chart, goal and plan.
 class MapSide {
  public:
-  MapSide(mpgc::rt::Component& c, const rec::RecorderParams& p, rec::Recording& r) : c_(c), p_(p), rec_(r) {
+  MapSide(mpgc::rt::Component& c, const rec::RecorderParams& p, Sinks& r) : c_(c), p_(p), rec_(r) {
     own_ = json("map/own_ship", "foxglove.LocationFix", rec::kLocationFixSchema);
     chart_ = json("map/chart", "foxglove.GeoJSON", rec::kGeoJsonSchema);
     safety_ = json("map/safety", "foxglove.GeoJSON", rec::kGeoJsonSchema);
     plan_ = json("map/plan", "foxglove.GeoJSON", rec::kGeoJsonSchema);
+    view_channel_ = rec_.live_channel(rec::live::kViewStateTopic, "mpgc.ViewState", rec::live::kViewStateSchema);
   }
   void on_own(const msg::NavState& s) {
     if ((s.valid_mask & msg::NAV_POSITION_VALID) == 0) return;
     const auto fix = rec::location_fix(log_time(s.header.stamp_ns), "own_ship", {s.lon * kDeg, s.lat * kDeg},
                                        (s.valid_mask & msg::NAV_HEADING_VALID) ? std::optional<double>(s.heading) : std::nullopt);
     put(own_, s.header.stamp_ns, fix);
+    view_.own_sog = (s.valid_mask & msg::NAV_VELOCITY_VALID) ? std::optional<double>(s.sog) : std::nullopt;
   }
   void on_chart(const msg::FixedObstacles& f) {
     try {
@@ -182,6 +216,8 @@ class MapSide {
     }
     const double radius = p_.safety_distance > 0 ? p_.safety_distance : goal_safety_;
     std::vector<rec::Feature> circles;
+    view_.targets.clear();
+    view_.safety_distance = radius;
     for (const auto& t : l.tracks) {
       // Tentative tracks (radar clutter, a target's first reports) come and go: not on the map.
       if (t.status != msg::TrackStatus::TRACK_CONFIRMED && t.status != msg::TrackStatus::TRACK_COASTING) continue;
@@ -192,6 +228,8 @@ class MapSide {
         it = targets_.emplace(name, json("map/targets/" + name, "foxglove.LocationFix", rec::kLocationFixSchema)).first;
       const double cog = std::atan2(t.vy, t.vx);
       put(it->second, l.header.stamp_ns, rec::location_fix(log_time(l.header.stamp_ns), name, ll(t.x, t.y), cog));
+      const rec::LonLat at = ll(t.x, t.y);
+      view_.targets.push_back({name, t.id, at.lat, at.lon, cog, std::hypot(t.vx, t.vy)});
       if (radius > 0 && std::isfinite(radius)) {
         rec::Feature ring{rec::Feature::Kind::Polygon, {}, "d_safety of target " + std::to_string(t.id), "#ff4040"};
         for (int k = 0; k <= 36; ++k) {
@@ -202,12 +240,23 @@ class MapSide {
       }
     }
     put(safety_, l.header.stamp_ns, rec::geojson(circles));
+    put_view(l.header.stamp_ns);
+  }
+  void on_encounters(const msg::EncounterList& l) {
+    view_.encounters.clear();
+    for (const auto& e : l.encounters)
+      view_.encounters.push_back({e.track_id, e.mmsi, msg::to_string(e.type), msg::to_string(e.role), e.cpa, e.tcpa, e.range});
+    put_view(l.header.stamp_ns);
   }
   void on_path(const msg::Path& path) {
     if (!origin_) return;
     rec::Feature line{rec::Feature::Kind::LineString, {}, "plan " + std::to_string(path.plan_id) + " " + msg::to_string(path.status), "#2060ff"};
     for (const auto& w : path.waypoints) line.coords.push_back(ll(w.x, w.y));
     put(plan_, path.header.stamp_ns, rec::geojson(line.coords.size() >= 2 ? std::vector<rec::Feature>{line} : std::vector<rec::Feature>{}));
+    view_.plan_id = path.plan_id;
+    view_.plan_status = msg::to_string(path.status);
+    view_.plan_reason = path.reason;
+    put_view(path.header.stamp_ns);
   }
 
  private:
@@ -227,16 +276,27 @@ class MapSide {
       c_.count("map.not_finite");
       return;
     }
+    rec_.to_live(channel, log_time(stamp), m->data(), m->size());
     try {
-      rec_.write(channel, log_time(stamp), log_time(stamp), m->data(), m->size());
+      rec_.recording.write(channel, log_time(stamp), log_time(stamp), m->data(), m->size());
     } catch (const std::exception& e) {
       c_.set_problem("file", std::string("map channel: ") + e.what());
     }
   }
 
+  // The web page's panel (live only): plan status, encounters, the targets' speeds.
+  void put_view(int64_t stamp) {
+    if (!rec_.live) return;
+    view_.t_ns = std::max(view_.t_ns, log_time(stamp));
+    const std::string j = rec::live::view_state_json(view_);
+    rec_.live->publish(view_channel_, view_.t_ns, j.data(), j.size());
+  }
+
   mpgc::rt::Component& c_;
   rec::RecorderParams p_;
-  rec::Recording& rec_;
+  Sinks& rec_;
+  rec::live::ViewState view_;
+  uint32_t view_channel_ = 0;
   std::optional<mpgc::geo::LocalNed> origin_;
   double goal_safety_ = 0;
   int own_ = -1, chart_ = -1, safety_ = -1, plan_ = -1;
@@ -248,8 +308,18 @@ class MapSide {
 // The Component is partly destroyed by then: the destructor uses only the logger.
 struct Recorder {
   Recorder(mpgc::rt::Component& c, const rec::RecorderParams& p, std::shared_ptr<spdlog::logger> l)
-      : log(l), recording(p), raw(c, p, recording, l) {
-    if (p.map) map = std::make_unique<MapSide>(c, p, recording);
+      : log(l), sinks(p), recording(sinks.recording), raw(c, p, sinks, l) {
+    if (p.map) map = std::make_unique<MapSide>(c, p, sinks);
+    if (sinks.live)
+      c.log().info("live view: http://{}:{}/ (Foxglove: ws://{}:{})", p.live_host, sinks.live->port(), p.live_host, sinks.live->port());
+  }
+  // The live view's counters into health, as they grew since the last call.
+  void live_health(mpgc::rt::Component& c) {
+    if (!sinks.live) return;
+    const auto s = sinks.live->stats();
+    c.count("live.client_errors", s.client_errors - counted.client_errors);
+    c.count("live.dropped", s.dropped_frames - counted.dropped_frames);
+    counted = s;
   }
   ~Recorder() {
     raw.final_poll();
@@ -261,8 +331,10 @@ struct Recorder {
     }
   }
   std::shared_ptr<spdlog::logger> log;
-  rec::Recording recording;
+  Sinks sinks;
+  rec::Recording& recording;
   RawSide raw;
+  rec::LiveServer::Stats counted;
   std::unique_ptr<MapSide> map;
 };
 
@@ -275,6 +347,7 @@ int main(int argc, char** argv) {
   return mpgc::rt::run_component("recorder", argc, argv, ps, [&](mpgc::rt::Component& c) {
     auto r = std::make_shared<Recorder>(c, p, c.logger());
     c.every(p.poll_period, [r] { r->raw.poll(); });
+    if (r->sinks.live) c.every(1.0, [r, &c] { r->live_health(c); });
     if (!r->map) return;
     const auto state = dds::QosProfile::state(), latched = dds::QosProfile::latched();
     c.subscribe<msg::NavState>(topics::kOwnState, state, [r](const msg::NavState& s) { r->map->on_own(s); });
@@ -282,5 +355,7 @@ int main(int argc, char** argv) {
     c.subscribe<msg::FixedObstacles>(topics::kFixedObstacles, latched, [r](const msg::FixedObstacles& f) { r->map->on_chart(f); });
     c.subscribe<msg::MissionGoal>(topics::kGoal, latched, [r](const msg::MissionGoal& g) { r->map->on_goal(g); });
     c.subscribe<msg::Path>(topics::kPath, latched, [r](const msg::Path& path) { r->map->on_path(path); });
+    if (r->sinks.live)
+      c.subscribe<msg::EncounterList>(topics::kEncounters, state, [r](const msg::EncounterList& l) { r->map->on_encounters(l); });
   });
 }

@@ -29,6 +29,11 @@ void declare(rt::ParamSet& ps, RecorderParams& p) {
   ps.add("map.enabled", &p.map, d.map, "write the Foxglove Map channels map/own_ship, map/targets/<id>, map/chart, map/safety, map/plan");
   ps.add("map.safety_distance", &p.safety_distance, d.safety_distance, "m", 0.0, 1e6,
          "radius of the circle drawn around each target; 0: the mission goal's d_safety");
+  ps.add("live.port", &p.live_port, d.live_port, "-", 0, 65535,
+         "TCP port of the live view: Foxglove WebSocket (ws://host:port) and web page (http://host:port/); 0: off");
+  ps.add("live.host", &p.live_host, d.live_host, "IP address the live view listens on (loopback unless a bridge network needs it)");
+  ps.add("live.client_buffer", &p.live_buffer_mib, d.live_buffer_mib, "MiB", 0.1, 1024.0,
+         "samples waiting for one live client beyond this are dropped (counted in live.dropped)");
 }
 
 std::vector<std::string> select_topics(const std::string& list, const std::vector<std::string>& all) {

@@ -34,6 +34,10 @@ struct RecorderParams {
                                   //   (>= 1e18 ns) get the latest simulated one as log time
   bool map = true;                // map.enabled: the Foxglove Map channels (map/...)
   double safety_distance = 0;     // [m] map.safety_distance around targets; 0 = the mission goal's
+  int live_port = 0;              // [-] live.port: the live view's TCP port (Foxglove WebSocket and web
+                                  //   page); 0 = no live view
+  std::string live_host = "127.0.0.1";  // live.host: address the live view listens on
+  double live_buffer_mib = 16;    // [MiB] live.client_buffer: a slower client loses samples past this
 };
 
 void declare(rt::ParamSet& ps, RecorderParams& p);
