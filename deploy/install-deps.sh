@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian package mpgc builds, tests and runs with, by name (Debian 12 bookworm), and
-# the npm packages the tests read recordings with, at the versions pinned in the repo
+# the npm packages the tests read recordings and the live view with, at the versions pinned in the repo
 # (tests/recorder/js/package-lock.json, `npm ci`).
 # Usage: deploy/install-deps.sh [--check]   (--check: list what is missing, install nothing)
 set -euo pipefail
@@ -12,8 +12,8 @@ PACKAGES=(
   cyclonedds-dev cyclonedds-tools
   libeigen3-dev libfcl-dev libspdlog-dev libyaml-cpp-dev libcli11-dev libnanoflann-dev nlohmann-json3-dev
   libgeographiclib-dev libgdal-dev libompl-dev
-  # recordings: zstd-compressed MCAP chunks (components/recorder)
-  libzstd-dev
+  # recordings: zstd-compressed MCAP chunks; the live view's server: Boost.Beast, header-only (components/recorder)
+  libzstd-dev libboost-dev
   # tests and benchmarks; clang and libFuzzer for the long fuzz runs (tests/fuzz/README.md)
   libgtest-dev libgmock-dev clang libfuzzer-14-dev
   # multi-host tests: network namespaces, loss and delay (iptables + an NFQUEUE delayer: this kernel
@@ -22,8 +22,9 @@ PACKAGES=(
   iproute2 iptables libnetfilter-queue-dev tcpdump podman runc debootstrap openssl
   # hardware in the loop: gpsd and libgps for the ship bridge, gpsfake (gpsd-clients) for the log replays
   gpsd gpsd-clients libgps-dev
-  # recordings read back with other people's code (tests/recorder/js: @mcap/core, Foxglove's omgidl reader)
-  nodejs
+  # recordings and the live view read back with other people's code (tests/recorder/js: @mcap/core,
+  # Foxglove's omgidl reader and WebSocket client; the web page in headless chromium via playwright-core)
+  nodejs chromium
 )
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 NPM_DIR="$ROOT/tests/recorder/js"
@@ -38,7 +39,8 @@ command -v npm >/dev/null 2>&1 || missing+=(npm)
 npm_stale() { [ ! -f "$NPM_DIR/node_modules/.package-lock.json" ] || [ "$NPM_DIR/package-lock.json" -nt "$NPM_DIR/node_modules/.package-lock.json" ]; }
 npm_install() {
   echo "install-deps: npm ci in ${NPM_DIR#"$ROOT"/}"
-  (cd "$NPM_DIR" && npm ci --no-audit --no-fund --loglevel=error)
+  # playwright-core drives Debian's chromium: never let anything download a browser of its own.
+  (cd "$NPM_DIR" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
 }
 
 if [ "${1:-}" = "--check" ]; then

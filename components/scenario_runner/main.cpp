@@ -456,6 +456,9 @@ int main(int argc, char** argv) {
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--quiet", o.quiet, "no progress lines");
+  app.add_flag("--view", cl.view,
+               "watch it live: the recorder serves a web page and Foxglove's WebSocket on 127.0.0.1:8765 (at "
+               "--realtime-factor 10 unless one is given)");
   app.add_flag("--late-plans", cl.late_plans,
                "lockstep: a plan takes effect after its computing time in simulated time, at the paper's 0.5 s per "
                "20000 iterations (seed 000 §6: the ship follows the old path meanwhile); = --plan-latency 25e-6");
@@ -513,6 +516,8 @@ int main(int argc, char** argv) {
     std::cerr << "mpgc_run: " << e.what() << "\n";
     return 2;
   }
+  if (o.view_port > 0)
+    std::printf("live view: http://127.0.0.1:%d/  (Foxglove: Open connection, ws://127.0.0.1:%d)\n", o.view_port, o.view_port);
   int failed = 0;
   std::vector<std::pair<std::string, sr::Outcome>> results;
   for (const auto& s : scenarios) {

@@ -94,6 +94,26 @@ TEST(Runner, OptionsNeedHostsForNetworkFlagsAndSetTheDefaults) {
   EXPECT_THROW(sr::resolve_options(c, {}), std::invalid_argument);
 }
 
+// --view: the recorder serves the live view on loopback, at a real-time factor unless one is given.
+TEST(Runner, ViewServesTheLiveViewFromTheRecorderAtARealtimeFactor) {
+  sr::RunOptions o;
+  sr::RunCommandLine cl;
+  cl.view = true;
+  sr::resolve_options(o, cl);
+  EXPECT_EQ(o.view_port, sr::kViewPort);
+  EXPECT_DOUBLE_EQ(o.realtime_factor, sr::kViewFactor);
+  const auto c = components(sr::launch_file(scenario(), "/run/x/world.yaml", o, 3, {}, {}));
+  EXPECT_EQ(c["recorder"]["set"]["live.port"].as<std::string>(), "8765");
+  EXPECT_FALSE(components(sr::launch_file(scenario(), "/run/x/world.yaml", sr::RunOptions{}, 3, {}, {}))["recorder"]["set"]["live.port"]);
+  sr::RunOptions f;
+  f.realtime_factor = 2;
+  sr::resolve_options(f, cl);
+  EXPECT_DOUBLE_EQ(f.realtime_factor, 2);  // the one given
+  cl.hosts_file = "deploy/hosts/x.yaml";
+  sr::RunOptions h;
+  EXPECT_THROW(sr::resolve_options(h, cl), std::invalid_argument);  // the recorder in a namespace: not reachable
+}
+
 TEST(Runner, SuiteFilesAreSortedAndAMissingFolderIsAnError) {
   const fs::path d = fs::temp_directory_path() / ("mpgc_runner_suite_" + std::to_string(::getpid()));
   fs::create_directories(d / "paper");

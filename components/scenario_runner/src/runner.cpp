@@ -42,6 +42,12 @@ std::string format(const char* f, ...) {
 void resolve_options(RunOptions& o, const RunCommandLine& cl) {
   if (o.hil && o.realtime_factor <= 0) o.realtime_factor = kHilFactor;
   if (cl.late_plans && o.plan_latency == 0.0) o.plan_latency = 25e-6;  // 0.5 s / 20000 iterations
+  if (cl.view) {
+    // The recorder serves it on loopback: inside a host's namespace or container no browser reaches it.
+    if (!cl.hosts_file.empty()) throw std::invalid_argument("--view with --hosts is not supported (the recorder's loopback is the host namespace's)");
+    o.view_port = kViewPort;
+    if (o.realtime_factor <= 0) o.realtime_factor = kViewFactor;
+  }
   if (cl.hosts_file.empty() && (!cl.links.empty() || !cl.cuts.empty() || o.capture || o.containers))
     throw std::invalid_argument("--link, --cut, --capture and --containers need --hosts");
   if (cl.hosts_file.empty()) return;
@@ -176,6 +182,7 @@ std::string launch_file(const Scenario& s, const std::string& world_path, const 
   set["recorder"]["record.reliable_state"] = "true";
   set["recorder"]["record.sim_time"] = "true";
   set["recorder"]["map.safety_distance"] = std::to_string(s.safety_distance);
+  if (o.view_port > 0) set["recorder"]["live.port"] = std::to_string(o.view_port);
   if (!o.secure.empty()) {  // a secured bus grants sim/faults to nobody (deploy/security/access.yaml)
     std::string granted;
     for (const auto& t : topics::kAll)

@@ -35,6 +35,10 @@ inline const std::vector<std::string> kAutonomy = {"situational_awareness", "obs
 // Hardware in the loop: the default real-time factor (gpsd runs on the wall clock) and an MMSI for
 // the own ship's transponder when the scenario gives none.
 inline constexpr double kHilFactor = 20.0;
+// --view: the recorder's live view (Foxglove WebSocket and web page) on 127.0.0.1 at this port, and
+// the real-time factor of a run that gives none (lockstep would be over before the page is open).
+inline constexpr int kViewPort = 8765;
+inline constexpr double kViewFactor = 10.0;
 inline constexpr uint32_t kHilOwnMmsi = 257999990;
 
 // The UDP/TCP ports of one HIL run, distinct per DDS domain so concurrent runs do not meet.
@@ -64,6 +68,7 @@ struct RunOptions {
   std::string image = "localhost/mpgc:bookworm";
   double plan_latency = 0.0;     // [s] per planner iteration: plans take effect late (opp plan.latency_per_iteration)
   bool record = true;            // mpgc_record writes the bus to <run>/run.mcap (not yet with --containers)
+  int view_port = 0;             // the recorder serves the live view on 127.0.0.1:<port>; 0: no live view
 };
 
 // What the command line gives beside RunOptions' own fields.
@@ -72,6 +77,7 @@ struct RunCommandLine {
   std::string hosts_file;   // --hosts
   std::vector<std::string> links;  // --link
   std::vector<std::string> cuts;   // --cut HOST@T+D
+  bool view = false;               // --view: the live view on kViewPort
 };
 
 // Completes `o` from the command line: HIL's real-time factor, late plans' latency, the deployment
