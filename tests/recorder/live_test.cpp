@@ -186,7 +186,7 @@ TEST(LiveWeb, PageAndScriptAreServedAndOtherPathsAreNot) {
   EXPECT_EQ(js->body.find("http"), std::string::npos);
 }
 
-TEST(LiveView, StateIsJsonWithNullForNonFiniteNumbers) {
+TEST(LiveViewState, IsJsonWithNullForNonFiniteNumbers) {
   live::ViewState v;
   v.t_ns = 2500000000ull;
   v.own_sog = 5.5;

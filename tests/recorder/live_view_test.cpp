@@ -66,6 +66,27 @@ bool accepts(int port) {
   return ok;
 }
 
+// Sends `request` on a new connection and returns what comes back until the server closes it or
+// is silent for a second.
+std::string http_exchange(int port, const std::string& request) {
+  const int s = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  std::string got;
+  if (connect(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0) {
+    timeval tv{1, 0};
+    setsockopt(s, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    if (send(s, request.data(), request.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(request.size())) {
+      char buf[4096];
+      for (ssize_t n; (n = recv(s, buf, sizeof buf, 0)) > 0;) got.append(buf, static_cast<size_t>(n));
+    }
+  }
+  close(s);
+  return got;
+}
+
 // NavState as Foxglove's reader decodes it: int64 as a decimal string (BigInt in JavaScript).
 nlohmann::json to_json(const msg::NavState& s) {
   return {{"header", {{"stamp_ns", std::to_string(s.header.stamp_ns)}, {"source", s.header.source}, {"seq", s.header.seq}}},
@@ -243,6 +264,39 @@ TEST(LiveView, FoxgloveClientGetsTheChannelsAndDecodesAPublishedSample) {
   EXPECT_EQ(run.stop(), 0) << "mpgc_record did not end cleanly on SIGINT";
   // The live view changes nothing in the recording: the file is complete.
   EXPECT_GT(fs::file_size(run.dir / "live.mcap"), 0u);
+  if (!HasFailure()) fs::remove_all(run.dir);
+}
+
+// Bad requests are answered (or the connection closed) and the server goes on serving; a connection
+// still open does not keep the recorder from ending cleanly.
+TEST(LiveView, BadRequestsAreRefusedAndTheServerGoesOn) {
+  LiveRun run("live_bad");
+  ASSERT_EQ(run.start(), "");
+  const int port = run.port;
+  EXPECT_NE(http_exchange(port, "GET /nothing HTTP/1.1\r\nHost: h\r\nConnection: close\r\n\r\n").find(" 404 "), std::string::npos);
+  EXPECT_NE(http_exchange(port, "POST / HTTP/1.1\r\nHost: h\r\nContent-Length: 2\r\nConnection: close\r\n\r\nab").find(" 405 "),
+            std::string::npos);
+  const std::string no_sub = http_exchange(port,
+      "GET / HTTP/1.1\r\nHost: h\r\nConnection: Upgrade\r\nUpgrade: websocket\r\nSec-WebSocket-Version: 13\r\n"
+      "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n\r\n");
+  EXPECT_NE(no_sub.find(" 400 "), std::string::npos) << no_sub;
+  EXPECT_NE(no_sub.find("foxglove.websocket.v1"), std::string::npos) << no_sub;
+  std::string noise(8192, '\0');
+  for (size_t i = 0; i < noise.size(); ++i) noise[i] = static_cast<char>((i * 7919) & 0xff);
+  http_exchange(port, noise);                                                     // not HTTP: closed
+  http_exchange(port, "GET / HTTP/1.1\r\nHost: h\r\nX-Long: " + std::string(200000, 'x') + "\r\n\r\n");  // header too large
+  const std::string page = http_exchange(port, "GET / HTTP/1.1\r\nHost: h\r\nConnection: close\r\n\r\n");
+  EXPECT_NE(page.find(" 200 "), std::string::npos);
+  EXPECT_NE(page.find("<canvas"), std::string::npos);
+  // A connection that never sends anything, open while the recorder stops.
+  const int idle = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  EXPECT_EQ(connect(idle, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  EXPECT_EQ(run.stop(), 0) << "mpgc_record did not end cleanly on SIGINT after bad requests";
+  close(idle);
   if (!HasFailure()) fs::remove_all(run.dir);
 }
 
