@@ -41,7 +41,12 @@ uint64_t log_time(int64_t t_ns) { return t_ns > 0 ? static_cast<uint64_t>(t_ns) 
 class Sinks {
  public:
   explicit Sinks(const rec::RecorderParams& p) : recording(p) {
-    if (p.live_port > 0) live = std::make_unique<rec::LiveServer>(rec::LiveOptions{p.live_host, p.live_port, p.live_buffer_mib}, "mpgc_record");
+    if (p.live_port <= 0) return;
+    try {
+      live = std::make_unique<rec::LiveServer>(rec::LiveOptions{p.live_host, p.live_port, p.live_buffer_mib}, "mpgc_record");
+    } catch (const std::runtime_error& e) {
+      live_error = e.what();  // the port is taken: record without the live view rather than not at all
+    }
   }
   int channel(const std::string& topic, const std::string& schema_name, const std::string& schema_encoding, const std::string& schema,
               const std::string& message_encoding) {
@@ -61,6 +66,7 @@ class Sinks {
   rec::Recording recording;
   std::unique_ptr<rec::LiveServer> live;
   std::vector<uint32_t> live_ids;  // recording handle -> live channel id
+  std::string live_error;          // why there is no live view although live.port asks for one
 };
 
 // Every selected topic read as serialised samples on a participant of its own.
@@ -310,6 +316,10 @@ struct Recorder {
   Recorder(mpgc::rt::Component& c, const rec::RecorderParams& p, std::shared_ptr<spdlog::logger> l)
       : log(l), sinks(p), recording(sinks.recording), raw(c, p, sinks, l) {
     if (p.map) map = std::make_unique<MapSide>(c, p, sinks);
+    if (!sinks.live_error.empty()) {
+      c.log().error("no live view: {}", sinks.live_error);
+      c.set_problem("live", sinks.live_error);
+    }
     if (sinks.live)
       c.log().info("live view: http://{}:{}/ (Foxglove: ws://{}:{})", p.live_host, sinks.live->port(), p.live_host, sinks.live->port());
   }
