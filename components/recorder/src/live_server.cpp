@@ -48,7 +48,17 @@ struct LiveServer::Impl {
     acceptor.listen();
     bound_port = acceptor.local_endpoint().port();
     accept();
-    thread = std::thread([this] { io.run(); });
+    thread = std::thread([this] {
+      // A handler that throws (it should not) costs that one exchange, never the recorder.
+      for (;;) {
+        try {
+          io.run();
+          return;
+        } catch (const std::exception&) {
+          ++client_errors;
+        }
+      }
+    });
   }
 
   void accept();
@@ -103,8 +113,13 @@ struct LiveServer::Impl::Ws : std::enable_shared_from_this<Ws> {
     });
   }
   void queue(live::Frame f) {
-    if (f.binary && queued_bytes + f.bytes.size() > srv.buffer_limit) {
-      ++srv.dropped;  // a slow client: drop samples, keep status and advertise messages
+    if (queued_bytes + f.bytes.size() > srv.buffer_limit) {
+      ++srv.dropped;
+      if (f.binary) return;  // a slow client loses samples
+      // An advertise or status it cannot take: it would go on with a wrong picture (or it is
+      // sending bad messages without reading the answers). Disconnect it.
+      beast::error_code ec;
+      beast::get_lowest_layer(ws).socket().close(ec);
       return;
     }
     queued_bytes += f.bytes.size();
@@ -161,7 +176,7 @@ struct Http : std::enable_shared_from_this<Http> {
       ++errors;
       return respond(http::status::bad_request, "text/plain", std::string("offer the WebSocket subprotocol ") + live::kSubprotocol + "\n");
     }
-    if (req.method() != http::verb::get && req.method() != http::verb::head) {
+    if (req.method() != http::verb::get) {
       ++errors;
       return respond(http::status::method_not_allowed, "text/plain", "GET only\n");
     }
@@ -175,7 +190,7 @@ struct Http : std::enable_shared_from_this<Http> {
     res->set(http::field::content_type, type);
     res->set(http::field::cache_control, "no-store");
     res->keep_alive(req.keep_alive());
-    if (req.method() != http::verb::head) res->body() = std::move(body);
+    res->body() = std::move(body);
     res->prepare_payload();
     http::async_write(stream, *res, [self = shared_from_this(), res](beast::error_code ec, size_t) {
       if (ec || !res->keep_alive()) {

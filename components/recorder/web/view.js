@@ -29,7 +29,13 @@ function connect() {
   ws.binaryType = "arraybuffer";
   const topics = new Map(); // subscription id -> topic
   let nextSub = 1;
-  ws.onopen = () => ($("conn").textContent = `connected to ${url}`);
+  ws.onopen = () => {
+    // A new server (the next scenario's recorder): nothing of the last run stays on the screen.
+    Object.assign(state, { own: null, safety: null, plan: null, chart: null, view: null });
+    state.targets.clear();
+    $("conn").textContent = `connected to ${url}`;
+    scheduleDraw();
+  };
   ws.onmessage = (ev) => {
     if (typeof ev.data === "string") {
       const m = JSON.parse(ev.data);
