@@ -255,14 +255,15 @@ class MapSide {
     put_view(l.header.stamp_ns);
   }
   void on_path(const msg::Path& path) {
-    if (!origin_) return;
-    rec::Feature line{rec::Feature::Kind::LineString, {}, "plan " + std::to_string(path.plan_id) + " " + msg::to_string(path.status), "#2060ff"};
-    for (const auto& w : path.waypoints) line.coords.push_back(ll(w.x, w.y));
-    put(plan_, path.header.stamp_ns, rec::geojson(line.coords.size() >= 2 ? std::vector<rec::Feature>{line} : std::vector<rec::Feature>{}));
+    // The status needs no origin: a plan that comes before the chart is still the plan.
     view_.plan_id = path.plan_id;
     view_.plan_status = msg::to_string(path.status);
     view_.plan_reason = path.reason;
     put_view(path.header.stamp_ns);
+    if (!origin_) return;
+    rec::Feature line{rec::Feature::Kind::LineString, {}, "plan " + std::to_string(path.plan_id) + " " + msg::to_string(path.status), "#2060ff"};
+    for (const auto& w : path.waypoints) line.coords.push_back(ll(w.x, w.y));
+    put(plan_, path.header.stamp_ns, rec::geojson(line.coords.size() >= 2 ? std::vector<rec::Feature>{line} : std::vector<rec::Feature>{}));
   }
 
  private:
