@@ -233,8 +233,8 @@ class MapSide {
       if (it == targets_.end())
         it = targets_.emplace(name, json("map/targets/" + name, "foxglove.LocationFix", rec::kLocationFixSchema)).first;
       const double cog = std::atan2(t.vy, t.vx);
-      put(it->second, l.header.stamp_ns, rec::location_fix(log_time(l.header.stamp_ns), name, ll(t.x, t.y), cog));
       const rec::LonLat at = ll(t.x, t.y);
+      put(it->second, l.header.stamp_ns, rec::location_fix(log_time(l.header.stamp_ns), name, at, cog));
       view_.targets.push_back({name, t.id, at.lat, at.lon, cog, std::hypot(t.vx, t.vy)});
       if (radius > 0 && std::isfinite(radius)) {
         rec::Feature ring{rec::Feature::Kind::Polygon, {}, "d_safety of target " + std::to_string(t.id), "#ff4040"};
