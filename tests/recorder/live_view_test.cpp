@@ -102,8 +102,8 @@ struct Out {
 };
 
 // The scene, published at 10 Hz from its own thread: own ship steaming north-east at 6 m/s (60 m
-// of simulated time per wall second: it visibly moves), two targets, a head-on encounter, an OK plan,
-// one charted island. Each own state is appended to `expected_file` before it is written.
+// of simulated time per wall second: it visibly moves), two targets, a head-on encounter, an OK plan (every
+// second), one charted island. Each own state is appended to `expected_file` before it is written.
 class Scene {
  public:
   Scene(int domain, std::string expected_file)
@@ -148,8 +148,12 @@ class Scene {
     p.plan_id = 7;
     p.status = msg::PlanStatus::PLAN_OK;
     for (auto [x, y] : {std::pair{0.0, 0.0}, {600, 200}, {1400, 1000}, {2500, 2500}}) p.waypoints.push_back({x, y, 0, 6});
-    path_.writer.write(p);
     for (; !done_; ++k_) {
+      // Replanned every second, as opp does: a plan that came before the chart is drawn by the next.
+      if (k_ % 10 == 0) {
+        p.header.stamp_ns = t_ns(k_);
+        path_.writer.write(p);
+      }
       const double t = 0.1 * k_;  // [s] simulated
       const double d = 60 * t;    // [m] along the course, 045
       msg::NavState s;

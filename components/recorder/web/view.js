@@ -112,7 +112,7 @@ function draw() {
   const targets = liveTargets();
   const ref = state.own ?? targets[0]?.fix;
   const shipsList = [];
-  if (!ref) return publishDom(0, false, targets, shipsList);
+  if (!ref) return publishDom(0, false, targets, shipsList, {});
   const lat0 = ref.latitude, lon0 = ref.longitude, k = Math.cos((lat0 * Math.PI) / 180);
   const toM = (lon, lat) => [(((lon - lon0) * Math.PI) / 180) * R_EARTH * k, (((lat - lat0) * Math.PI) / 180) * R_EARTH];
 
@@ -134,8 +134,10 @@ function draw() {
     });
     if (close) g.closePath();
   };
+  const drawn = { circles: 0, planPoints: 0, chartPolygons: 0 };
   for (const f of state.chart?.features ?? []) {
     if (f.geometry.type === "Polygon") {
+      drawn.chartPolygons++;
       path(f.geometry.coordinates[0], true);
       g.fillStyle = "#c8a165";
       g.fill();
@@ -149,12 +151,14 @@ function draw() {
   }
   for (const f of state.safety?.features ?? []) {
     path(f.geometry.coordinates[0], true);
+    drawn.circles++;
     g.strokeStyle = "#ff4040";
     g.lineWidth = 1.5 * S;
     g.stroke();
   }
   for (const f of state.plan?.features ?? []) {
     path(f.geometry.coordinates, false);
+    drawn.planPoints += f.geometry.coordinates.length;
     g.strokeStyle = "#4a8cff";
     g.lineWidth = 2.5 * S;
     g.stroke();
@@ -197,14 +201,17 @@ function draw() {
     shipsList.unshift(`own ship: ${state.own.latitude.toFixed(5)}°, ${state.own.longitude.toFixed(5)}°, heading ${deg(state.own.heading)}`);
   }
   $("scale").textContent = `${((2 * span) / 1000).toFixed(1)} km across`;
-  publishDom(targets.length + (hasOwn ? 1 : 0), hasOwn, targets, shipsList);
+  publishDom(targets.length + (hasOwn ? 1 : 0), hasOwn, targets, shipsList, drawn);
 }
 
 const deg = (rad) => (Number.isFinite(rad) ? `${(((rad * 180) / Math.PI + 360) % 360).toFixed(0)}°` : "–");
 const metres = (m) => (Number.isFinite(m) ? (Math.abs(m) >= 2000 ? `${(m / 1852).toFixed(2)} nm` : `${m.toFixed(0)} m`) : "–");
 
-function publishDom(ships, hasOwn, targets, shipsList) {
+function publishDom(ships, hasOwn, targets, shipsList, drawn) {
   canvas.dataset.ships = String(ships);
+  canvas.dataset.circles = String(drawn.circles ?? 0);
+  canvas.dataset.planPoints = String(drawn.planPoints ?? 0);
+  canvas.dataset.chartPolygons = String(drawn.chartPolygons ?? 0);
   canvas.dataset.own = hasOwn ? "1" : "0";
   canvas.dataset.targets = String(targets.length);
   canvas.dataset.updates = String(state.messages);

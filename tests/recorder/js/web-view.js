@@ -1,9 +1,10 @@
 // node web-view.js http://127.0.0.1:PORT/ SCREENSHOT.png: mpgc_record's built-in page in headless
 // Chromium (Debian's /usr/bin/chromium, driven by playwright-core; no browser is downloaded) while
 // the test publishes a scene of own ship and two confirmed or coasting targets (a third, tentative
-// one must not be drawn), a head-on encounter and an OK plan. Checks that the page loads from the
-// server alone, draws the ships (the canvas's data-ships, the "Ships drawn" list, own ship's white
-// pixels at the centre), shows the plan status and the encounter, and follows own ship as it moves.
+// one must not be drawn), a head-on encounter, an OK plan and a charted island. Checks that the page
+// loads from the server alone, draws the ships (the canvas's data-ships, the "Ships drawn" list, own
+// ship's white pixels at the centre), the plan, the d_safety circles and the chart, shows the plan
+// status and the encounter, and follows own ship as it moves.
 // Exit 0 and "OK web view ..." when all holds; the screenshot is taken at the end.
 const fs = require("fs");
 const os = require("os");
@@ -33,8 +34,15 @@ const ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "
     const canvas = page.locator("#view");
     // Own ship and the two targets drawn; the tentative track not.
     await page.waitForFunction(() => document.getElementById("view").dataset.ships === "3", null, { timeout: 30000 });
+    // The plan (4 waypoints), the two targets' d_safety circles and the charted island.
+    await page.waitForFunction(() => {
+      const d = document.getElementById("view").dataset;
+      return d.planPoints === "4" && d.circles === "2" && d.chartPolygons === "1";
+    }, null, { timeout: 30000 }).catch(() => {});
     const data = await canvas.evaluate((c) => ({ ...c.dataset }));
     if (data.own !== "1" || data.targets !== "2") problems.push(`drawn: own ${data.own}, targets ${data.targets} (want 1 and 2)`);
+    if (data.planPoints !== "4" || data.circles !== "2" || data.chartPolygons !== "1")
+      problems.push(`drawn: plan points ${data.planPoints} (want 4), circles ${data.circles} (2), chart polygons ${data.chartPolygons} (1)`);
     await page.waitForFunction(() => document.querySelector("#encounters tbody tr") !== null, null, { timeout: 30000 });
     const plan = await page.locator("#plan-status").textContent();
     if (plan.trim() !== "OK") problems.push(`plan status shows "${plan}"`);
