@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -26,14 +27,15 @@
 #include "deployment.hpp"
 #include "mpgc/msg/control.hpp"
 #include "mpgc/msg/nav.hpp"
-#include "mpgc/msg/obstacles.hpp"
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/runtime/component.hpp"
+#include "mpgc/scenario_runner/baseline.hpp"
 #include "mpgc/scenario_runner/evaluation.hpp"
 #include "mpgc/scenario_runner/fault_run.hpp"
 #include "mpgc/scenario_runner/report.hpp"
 #include "mpgc/scenario_runner/runner.hpp"
 #include "mpgc/scenario_runner/scenario.hpp"
+#include "mpgc/scenario_runner/scenario_obstacles.hpp"
 #include "mpgc/topics.hpp"
 #include "netns.hpp"
 
@@ -193,6 +195,10 @@ sr::LaunchContext launch_context() {
 }
 
 sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
+  // The run is judged against the scenario's own chart and shapes (read first: a chart that cannot
+  // be read is the run's error before anything starts).
+  const char* shared = std::getenv("MPGC_SHARED_DATA");
+  sr::FixedObstacles obstacles = sr::scenario_obstacles(s, shared != nullptr ? shared : "");
   sr::Outcome out;
   const fs::path dir = fs::path(o.out) / (o.hil ? s.name + "-hil" : s.name);
   fs::create_directories(dir);
@@ -245,7 +251,7 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
   auto log = std::make_shared<spdlog::logger>("scenario_runner", std::make_shared<spdlog::sinks::null_sink_mt>());
   rt::Component c("scenario_runner", rp, log);
 
-  sr::RunRecorder rec(s);
+  sr::RunRecorder rec(s, std::move(obstacles));
   msg::GroundTruth truth;
   bool have_truth = false;
 
@@ -254,15 +260,6 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
     truth = t;
     have_truth = true;
   });
-  c.subscribe<msg::FixedObstacles>(mpgc::topics::kFixedObstacles, dds::QosProfile::latched(),
-                                   [&](const msg::FixedObstacles& f) {
-                                     for (const auto& p : f.polygons) {
-                                       std::vector<mpgc::geom::Vec2> ring;
-                                       for (const auto& q : p.ring) ring.push_back({q.x, q.y});
-                                       rec.fixed_polygon(p.feature_id, ring);
-                                     }
-                                     for (const auto& q : f.points) rec.fixed_point(q.x, q.y);
-                                   });
   c.subscribe<msg::Path>(mpgc::topics::kPath, dds::QosProfile::latched(),
                          [&](const msg::Path& p) { rec.plan(plan_of(p, c.clock().now_s())); });
   c.subscribe<msg::GuidanceStatus>(mpgc::topics::kGuidanceStatus, dds::QosProfile::state(),
@@ -456,6 +453,10 @@ int main(int argc, char** argv) {
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--quiet", o.quiet, "no progress lines");
+  std::string baseline_file;
+  app.add_option("--baseline", baseline_file,
+                 "judge against a ratchet (scenarios/baseline.json): fail only when a scenario listed as passing, or "
+                 "not listed, does not pass or a run breaks; known failures and new passes are reported");
   app.add_flag("--view", cl.view,
                "watch it live: the recorder serves a web page and Foxglove's WebSocket on 127.0.0.1:8765 (at "
                "--realtime-factor 10 unless one is given)");
@@ -516,6 +517,13 @@ int main(int argc, char** argv) {
     std::cerr << "mpgc_run: " << e.what() << "\n";
     return 2;
   }
+  std::optional<sr::Baseline> baseline;
+  try {
+    if (!baseline_file.empty()) baseline = sr::read_baseline(baseline_file);
+  } catch (const std::exception& e) {
+    std::cerr << "mpgc_run: --baseline " << e.what() << "\n";
+    return 2;
+  }
   if (o.view_port > 0)
     std::printf("live view: http://127.0.0.1:%d/  (Foxglove: Open connection, ws://127.0.0.1:%d)\n", o.view_port, o.view_port);
   int failed = 0;
@@ -532,5 +540,13 @@ int main(int argc, char** argv) {
     results.emplace_back(s.name, std::move(r));
   }
   std::fputs(sr::summary(results, o.out).c_str(), stdout);
-  return failed == 0 ? 0 : 1;
+  if (!baseline) return failed == 0 ? 0 : 1;
+  std::vector<sr::Judged> judged;
+  for (const auto& [name, r] : results)
+    judged.push_back({name,
+                      !r.error.empty() || !r.ran ? sr::Result::kError : (r.passed() ? sr::Result::kPassed : sr::Result::kFailed),
+                      r.metrics.failures});
+  const sr::Ratchet ratchet = sr::judge(*baseline, judged);
+  std::fputs(sr::describe(ratchet, baseline_file).c_str(), stdout);
+  return ratchet.ok() ? 0 : 1;
 }

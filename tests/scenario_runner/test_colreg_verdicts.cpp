@@ -95,7 +95,7 @@ TEST(ColregVerdicts, GiveWayCrossingPassingAsternIsCompliant) {
 }
 
 // Rule 8(b): the 60 deg alteration is readily apparent (>= 30 deg); a 15 deg one is not, and the
-// report says so without changing the verdicts it has (reported only).
+// encounter is then not compliant, though it turned to starboard and passed astern.
 TEST(ColregVerdicts, GiveWayAlterationIsReadilyApparentOnlyWhenLarge) {
   const auto t = sr::synthetic::times(700, 1.0);
   auto tgt = sail(1, 10, 2000, 2000, -kPi / 2, 7, {}, t);
@@ -103,6 +103,8 @@ TEST(ColregVerdicts, GiveWayAlterationIsReadilyApparentOnlyWhenLarge) {
   EXPECT_EQ(big.readily_apparent, Verdict::kPass);
   const auto small = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{40, deg2rad(15), 7}}, t), {tgt}));
   EXPECT_EQ(small.readily_apparent, Verdict::kFail);
+  EXPECT_EQ(small.turned_starboard, Verdict::kPass);
+  EXPECT_FALSE(small.compliant);
   // A speed reduction of 60 % is apparent too.
   const auto slow = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{40, 0, 2.8}}, t), {tgt}));
   EXPECT_EQ(slow.readily_apparent, Verdict::kPass);
@@ -174,6 +176,13 @@ TEST(ColregVerdicts, OvertakingKeepsClearOnlyWithEnoughCpa) {
   EXPECT_GT(e.cpa, 100.0);
   EXPECT_EQ(e.kept_clear, Verdict::kPass);
   EXPECT_EQ(e.passing_side, Side::kPort);
+  // Clear, but 20 deg is not "readily apparent" (rule 8(b), delta_course_app 30 deg).
+  EXPECT_EQ(e.readily_apparent, Verdict::kFail);
+  EXPECT_FALSE(e.compliant);
+  auto apparent = sail(0, 10, 0, 0, 0, 8, {{30, deg2rad(35), 8}, {120, 0, 8}}, t);
+  e = one(sr::synthetic::run_of(t, apparent, {tgt}));
+  EXPECT_EQ(e.kept_clear, Verdict::kPass);
+  EXPECT_EQ(e.readily_apparent, Verdict::kPass);
   EXPECT_TRUE(e.compliant);
 }
 
@@ -286,4 +295,34 @@ TEST(ColregVerdicts, StandOnIsExcusedWhileGivingWayToAnother) {
   const auto alone = one(sr::synthetic::run_of(t, own, {so}));
   EXPECT_FALSE(alone.conflicting_obligation);
   EXPECT_EQ(alone.held_course_and_speed, Verdict::kFail);
+}
+
+// Each encounter is judged by the manoeuvre made for it: a small wobble is no manoeuvre (below
+// theta_sm_lim), so the 40 deg starboard turn after a 4 deg port wobble is the one judged.
+TEST(ColregVerdicts, AWobbleBeforeTheTurnIsNotTheManoeuvre) {
+  const auto t = sr::synthetic::times(700, 1.0);
+  auto own = sail(0, 10, 0, 0, 0, 7, {{36, deg2rad(-4), 7}, {60, deg2rad(40), 7}}, t);
+  auto tgt = sail(1, 10, 2000, 2000, -kPi / 2, 7, {}, t);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kCrossingGiveWay);
+  EXPECT_GE(e.manoeuvres, 2);
+  EXPECT_EQ(e.manoeuvre_side, Side::kStarboard);
+  EXPECT_GT(e.t_manoeuvre, 60.0);
+  EXPECT_NEAR(e.max_starboard_change, deg2rad(44), deg2rad(0.5));  // from the course held before it
+  EXPECT_EQ(e.turned_starboard, Verdict::kPass);
+  EXPECT_TRUE(e.compliant);
+}
+
+// A turn made while a target was no risk of collision (it had turned away itself) is not judged
+// for it: the head-on target turns 60 deg to its starboard early, then the own ship turns 40 deg
+// to port for its route; before, that port turn was the head-on encounter's "manoeuvre".
+TEST(ColregVerdicts, ATurnMadeWhenTheTargetWasNoRiskIsNotJudgedForIt) {
+  const auto t = sr::synthetic::times(400, 1.0);
+  auto own = sail(0, 10, 0, 0, 0, 7, {{140, deg2rad(-40), 7}}, t);
+  auto tgt = sail(1, 10, 4000, 0, kPi, 7, {{115, kPi + deg2rad(60), 7}}, t);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kHeadOn);
+  EXPECT_EQ(e.manoeuvres, 0);
+  EXPECT_TRUE(std::isnan(e.t_manoeuvre));
+  EXPECT_EQ(e.manoeuvre_side, Side::kNone);
 }

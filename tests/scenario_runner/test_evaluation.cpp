@@ -278,6 +278,45 @@ TEST(Evaluation, RequiredEncounterVerdicts) {
   EXPECT_FALSE(sr::evaluate(r, {}, c).passed);
 }
 
+// compliant: false is checked (a run without COLREG must be shown to break a rule, seed 000 Figs. 8
+// and 12), and a required verdict that cannot be judged fails with the reason either way.
+TEST(Evaluation, RequiredViolationAndUnjudgedVerdictsFail) {
+  const auto t = sr::synthetic::times(400, 1.0);
+  auto tgt = sail(3, 10, 4000, 0, kPi, 7, {}, t);
+  sr::PassCriteria c;
+  c.goal_required = false;
+  c.required.push_back({3, mpgc::colreg::EncounterType::kHeadOn, true, false});
+  // Port turn: a violation, as required.
+  auto port = sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{120, -0.6, 7}}, t), {tgt}, 50.0);
+  auto m = sr::evaluate(port, {}, c);
+  EXPECT_TRUE(m.passed) << (m.failures.empty() ? "" : m.failures[0]);
+  // A readily apparent starboard turn: compliant, so the requirement of a violation fails.
+  auto stbd = sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{120, 0.7, 7}}, t), {tgt}, 50.0);
+  m = sr::evaluate(stbd, {}, c);
+  ASSERT_EQ(m.failures.size(), 1u);
+  EXPECT_NE(m.failures[0].find("a COLREG violation is required"), std::string::npos) << m.failures[0];
+  c.required[0].compliant = true;
+  EXPECT_TRUE(sr::evaluate(stbd, {}, c).passed);
+  // A target that never comes within r_colregs_2_max: nothing to judge, so neither passes.
+  auto far = sail(3, 10, 4000, 3000, kPi, 7, {}, t);
+  auto r = sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {}, t), {far}, 50.0);
+  c.required[0].check_situation = false;
+  for (bool compliant : {true, false}) {
+    c.required[0].compliant = compliant;
+    m = sr::evaluate(r, {}, c);
+    ASSERT_EQ(m.failures.size(), 1u);
+    EXPECT_NE(m.failures[0].find("not judged: never within r_colregs_2_max"), std::string::npos) << m.failures[0];
+  }
+  // A stand-on target first met inside r_colregs_3_max: no course and speed to hold.
+  auto close = sail(3, 10, 700, -600, kPi / 2, 7, {}, t);  // predicted CPA 71 m
+  r = sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {}, t), {close}, 50.0);
+  c.required[0].compliant = true;
+  m = sr::evaluate(r, {}, c);
+  ASSERT_EQ(m.encounters[0].situation, mpgc::colreg::EncounterType::kCrossingStandOn);
+  ASSERT_EQ(m.failures.size(), 1u);
+  EXPECT_NE(m.failures[0].find("stand-on from inside r_colregs_3_max"), std::string::npos) << m.failures[0];
+}
+
 TEST(Evaluation, BadInputIsRejectedWithTheFieldNamed) {
   auto expect_error = [](const sr::RunRecord& r, const std::string& field) {
     try {

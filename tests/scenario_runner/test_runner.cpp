@@ -130,7 +130,7 @@ TEST(Runner, SuiteFilesAreSortedAndAMissingFolderIsAnError) {
 
 TEST(Runner, RecorderFixesTheSceneAndEndsAtTheGoalOrTheTimeLimit) {
   const sr::Scenario s = scenario();
-  sr::RunRecorder rec(s);
+  sr::RunRecorder rec(s, {});
   EXPECT_TRUE(rec.fresh(0));
   const sr::RunRecorder::Ship own{0, 0, {0, 0, 0, 0, 5}};
   const auto d = rec.record(1, own, {{4, 0, {500, 0, 0, 0, 0}}});
@@ -148,7 +148,7 @@ TEST(Runner, RecorderFixesTheSceneAndEndsAtTheGoalOrTheTimeLimit) {
 }
 
 TEST(Runner, RecorderTakesPlansInOrderAndAShortPlanIsNoPath) {
-  sr::RunRecorder rec(scenario());
+  sr::RunRecorder rec(scenario(), {});
   sr::PlanRecord p;
   p.t = 5;
   p.status = sr::PlanStatus::kOk;
@@ -162,9 +162,6 @@ TEST(Runner, RecorderTakesPlansInOrderAndAShortPlanIsNoPath) {
   rec.guidance({3, 1, 0, 0});
   rec.guidance({3, 1, 1, 0});  // same time: dropped
   EXPECT_EQ(rec.run().guidance.size(), 1u);
-  rec.fixed_polygon(1, {{0, 0}, {1, 0}, {1, 1}});
-  rec.fixed_polygon(1, {{0, 0}, {1, 0}, {1, 1}});  // the same feature in the next version
-  rec.fixed_polygon(2, {{0, 0}, {1, 0}});          // no polygon
   EXPECT_EQ(sr::plans_between(rec.run(), 4, 6), 1);
   EXPECT_EQ(sr::plans_between(rec.run(), 5, 6), 0);
 }

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "mpgc/scenario_runner/scenario.hpp"
+#include "mpgc/scenario_runner/scenario_obstacles.hpp"
 #include "mpgc/testing.hpp"
 
 namespace sr = mpgc::scenario_runner;
@@ -125,4 +126,27 @@ TEST(ScenarioFile, FromTakesAnotherScenarioAndOverridesNameFaultsAndCriteria) {
   }
   std::ofstream(dir / "bad2.yaml") << "name: b\nfrom: base.yaml\nworld: {}\n";
   EXPECT_THROW(sr::load_scenario((dir / "bad2.yaml").string()), std::runtime_error);
+}
+
+// The evaluation's fixed obstacles come from the scenario itself: circles exact, other shapes and
+// chart files through the chart loader; an unreadable chart is an error naming it.
+TEST(ScenarioObstacles, TheScenariosOwnShapesAndChart) {
+  sr::Scenario s;
+  s.origin_lat_deg = 38.965;
+  s.origin_lon_deg = -76.45;
+  s.chart_shapes = "circle 1000 0 100; polygon 0 500 100 500 100 600; line -500 0 -500 100";
+  auto o = sr::scenario_obstacles(s, "");
+  ASSERT_EQ(o.circles.size(), 1u);
+  EXPECT_DOUBLE_EQ(o.circles[0].radius, 100.0);
+  EXPECT_NEAR(sr::distance_to_obstacles({1000, 150}, o), 50.0, 1e-9);  // exact, not the circumscribed polygon
+  EXPECT_EQ(o.polygons.size(), 2u);
+  EXPECT_NEAR(sr::distance_to_obstacles({-500, 50}, o), 0.0, 1e-9);     // on the line
+  s.chart_shapes = "circle 0 0";
+  EXPECT_THROW(sr::scenario_obstacles(s, ""), std::runtime_error);      // add_shapes names it
+  s.chart_shapes = "";
+  s.chart_files = {"chart/crop_annapolis_LNDARE.geojson"};
+  o = sr::scenario_obstacles(s, mpgc::testing::source_dir() + "/../shared/data");
+  EXPECT_GE(o.polygons.size(), 5u);  // the crop's 8 land areas
+  s.chart_files = {"chart/no_such_chart.geojson"};
+  EXPECT_ANY_THROW(sr::scenario_obstacles(s, mpgc::testing::source_dir() + "/../shared/data"));
 }

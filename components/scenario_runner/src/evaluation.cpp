@@ -328,7 +328,72 @@ DistanceSeries distance_series(const RunRecord& run) {
 
 namespace {
 
-EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const EvaluationParams& p) {
+// A course manoeuvre of the own ship: a change of at least delta_course_md within the detector's
+// window (delta_course_md / epsilon_d_course) begins one, and it lasts while the course keeps
+// changing that way by at least half as much per window; a turn the other way is a new one.
+struct Episode {
+  std::size_t from = 0;      // sample before the change (the window's first): the course held until then
+  std::size_t detected = 0;  // sample at which the change reached delta_course_md
+  std::size_t to = 0;        // last sample of the manoeuvre
+  Side side = Side::kNone;
+};
+
+std::vector<Episode> course_episodes(const RunRecord& run, const EvaluationParams& p) {
+  const auto& t = run.t;
+  const auto& own = run.own.states;
+  const double window = p.manoeuvre_window();
+  std::vector<Episode> out;
+  bool in = false;
+  std::size_t back = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    while (t[i] - t[back] > window) ++back;
+    const double step = geo::angle_diff(course(own[i]), course(own[back]));
+    const Side side = step > 0.0 ? Side::kStarboard : Side::kPort;
+    if (std::fabs(step) >= p.delta_course_md && (!in || side != out.back().side)) {
+      out.push_back({back, i, i, side});
+      in = true;
+    } else if (in && std::fabs(step) >= 0.5 * p.delta_course_md && side == out.back().side) {
+      out.back().to = i;
+    } else if (in && std::fabs(step) < 0.5 * p.delta_course_md) {
+      in = false;
+    }
+  }
+  return out;
+}
+
+// Which of the own ship's manoeuvres were made for this encounter, and what they amounted to. A
+// manoeuvre is made for every encounter with a risk of collision when it began (closing, predicted
+// CPA below r_pref from the states before the change), within [start, CPA]: a turn made for one
+// ship is not judged for another that was no risk then (DNV 40, 46 were judged by such turns).
+// The encounter's manoeuvre is the first of those that reached theta_sm_lim (smaller ones are
+// wobbles, not an alteration to avoid collision); its course changes are measured from the course
+// held before it, up to the CPA.
+void attribute(EncounterResult& e, const RunRecord& run, const ShipTrack& tgt, std::size_t start, std::size_t kcpa,
+               const std::vector<Episode>& episodes, const EvaluationParams& p) {
+  const auto& t = run.t;
+  const auto& own = run.own.states;
+  const auto& tg = tgt.states;
+  for (const Episode& ep : episodes) {
+    if (ep.detected < start || ep.detected > kcpa) continue;
+    const colreg::Cpa c = colreg::cpa(kin(own[ep.from]), kin(tg[ep.from]));
+    if (!(c.tcpa > 0.0 && c.dcpa < p.colreg.cpa_risk)) continue;
+    ++e.manoeuvres;
+    double change = 0.0;
+    const double chi = course(own[ep.from]);
+    for (std::size_t i = ep.from; i <= ep.to; ++i) change = std::max(change, std::fabs(geo::angle_diff(course(own[i]), chi)));
+    if (change < p.theta_sm_lim || !std::isnan(e.t_manoeuvre)) continue;
+    e.t_manoeuvre = t[ep.detected];
+    e.manoeuvre_side = ep.side;
+    for (std::size_t i = ep.from; i <= kcpa; ++i) {
+      const double dchi = geo::angle_diff(course(own[i]), chi);
+      e.max_starboard_change = std::max(e.max_starboard_change, dchi);
+      e.max_port_change = std::max(e.max_port_change, -dchi);
+    }
+  }
+}
+
+EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const std::vector<Episode>& episodes,
+                             const EvaluationParams& p) {
   const auto& t = run.t;
   const auto& own = run.own.states;
   const auto& tg = tgt.states;
@@ -407,26 +472,12 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const E
     }
   }
 
-  // Own manoeuvres in [start, kcpa]: course change from the course at the start, first change of
-  // at least delta_course_md within the detection window, and speed reduction.
-  const double chi0 = course(own[start]);
+  // The own ship's manoeuvres judged for this encounter: only those made for it (attribute()).
   const double u0 = own[start].sog;
-  const double window = p.manoeuvre_window();
-  std::size_t back = start;
-  for (std::size_t i = start; i <= kcpa; ++i) {
-    const double dchi = geo::angle_diff(course(own[i]), chi0);
-    e.max_starboard_change = std::max(e.max_starboard_change, dchi);
-    e.max_port_change = std::max(e.max_port_change, -dchi);
+  for (std::size_t i = start; i <= kcpa; ++i)
     if (u0 > 0.1) e.max_speed_reduction = std::max(e.max_speed_reduction, (u0 - own[i].sog) / u0);
-    while (t[i] - t[back] > window) ++back;
-    if (std::isnan(e.t_manoeuvre)) {
-      const double step = geo::angle_diff(course(own[i]), course(own[back]));
-      if (std::fabs(step) >= p.delta_course_md) {
-        e.t_manoeuvre = t[i];
-        e.manoeuvre_side = step > 0.0 ? Side::kStarboard : Side::kPort;
-      }
-    }
-  }
+  const double chi0 = course(own[start]);
+  attribute(e, run, tgt, start, kcpa, episodes, p);
 
   using colreg::EncounterType;
   if (e.situation == EncounterType::kHeadOn || e.situation == EncounterType::kCrossingGiveWay ||
@@ -470,7 +521,7 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const E
 void set_compliance(EncounterResult& e) {
   e.compliant = true;
   for (Verdict v : {e.turned_starboard, e.passed_port_to_port, e.not_crossed_ahead, e.kept_clear,
-                    e.held_course_and_speed})
+                    e.held_course_and_speed, e.readily_apparent})
     if (v == Verdict::kFail) e.compliant = false;
 }
 
@@ -485,9 +536,31 @@ std::string describe_failures(const EncounterResult& e) {
   add("crossed ahead;", e.not_crossed_ahead);
   add("did not keep clear;", e.kept_clear);
   add("did not hold course and speed;", e.held_course_and_speed);
+  add("no readily apparent action (rule 8(b));", e.readily_apparent);
   std::string r = s.str();
   if (!r.empty() && r.back() == ';') r.pop_back();
   return r;
+}
+
+// Why the rule this encounter falls under could not be judged ("" when it was).
+std::string unjudged(const EncounterResult& e, const EvaluationParams& p) {
+  std::ostringstream s;
+  s.precision(0);
+  s << std::fixed;
+  if (!e.encountered) {
+    s << "never within r_colregs_2_max = " << p.r_colregs_2_max << " m";
+  } else if (e.situation == colreg::EncounterType::kNone) {
+    s << "no risk of collision when the encounter began (predicted CPA " << e.dcpa_start << " m, r_pref "
+      << p.r_pref << " m)";
+  } else if ((e.situation == colreg::EncounterType::kCrossingStandOn || e.situation == colreg::EncounterType::kOvertaken) &&
+             e.held_course_and_speed == Verdict::kNotApplicable) {
+    if (e.conflicting_obligation)
+      s << "stand-on while giving way to another ship (conflicting obligations)";
+    else
+      s << "stand-on from inside r_colregs_3_max = " << p.r_colregs_3_max << " m (start range " << e.range_start
+        << " m): no course and speed to hold";
+  }
+  return s.str();
 }
 
 }  // namespace
@@ -497,7 +570,8 @@ std::vector<EncounterResult> evaluate_encounters(const RunRecord& run, const Eva
   p.validate();
   std::vector<EncounterResult> out;
   out.reserve(run.targets.size());
-  for (const auto& tgt : run.targets) out.push_back(evaluate_one(run, tgt, p));
+  const std::vector<Episode> episodes = course_episodes(run, p);
+  for (const auto& tgt : run.targets) out.push_back(evaluate_one(run, tgt, episodes, p));
   // A ship that must give way to one target cannot stand on for another at the same time.
   for (auto& so : out) {
     if (so.held_course_and_speed == Verdict::kNotApplicable) continue;
@@ -642,8 +716,17 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
     if (req.check_situation && it->situation != req.situation)
       m.failures.push_back("target " + std::to_string(req.target_id) + ": situation " +
                            colreg::to_string(it->situation) + ", expected " + colreg::to_string(req.situation));
-    if (req.compliant && !it->compliant && !criteria.all_encounters_compliant)
+    // A verdict the scenario requires but that cannot be judged fails, with the reason.
+    const std::string why = unjudged(*it, p);
+    const std::string who = "target " + std::to_string(req.target_id) + ": ";
+    if (!why.empty())
+      m.failures.push_back(who + "COLREG verdict required (compliant: " + (req.compliant ? "true" : "false") +
+                           ") but not judged: " + why);
+    else if (req.compliant && !it->compliant && !criteria.all_encounters_compliant)
       m.failures.push_back("COLREG: " + describe_failures(*it));
+    else if (!req.compliant && it->compliant)
+      m.failures.push_back(who + "a COLREG violation is required (compliant: false, a run without COLREG), but every "
+                           "verdict passed (" + colreg::to_string(it->situation) + ")");
   }
   m.faults = run.faults;
   for (const auto& f : run.faults) {

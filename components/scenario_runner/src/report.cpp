@@ -84,6 +84,7 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
                           {"t_cpa_s", number(e.t_cpa)},
                           {"passing_side", to_string(e.passing_side)},
                           {"bow_crossing_m", number(e.bow_crossing)},
+                          {"manoeuvres", e.manoeuvres},
                           {"t_manoeuvre_s", number(e.t_manoeuvre)},
                           {"manoeuvre_side", to_string(e.manoeuvre_side)},
                           {"max_starboard_change_deg", deg(e.max_starboard_change)},
@@ -94,8 +95,8 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
                             {"passed_port_to_port", to_string(e.passed_port_to_port)},
                             {"not_crossed_ahead", to_string(e.not_crossed_ahead)},
                             {"kept_clear", to_string(e.kept_clear)},
-                            {"held_course_and_speed", to_string(e.held_course_and_speed)}}},
-                          {"readily_apparent", to_string(e.readily_apparent)},  // rule 8(b), reported only
+                            {"held_course_and_speed", to_string(e.held_course_and_speed)},
+                            {"readily_apparent", to_string(e.readily_apparent)}}},  // rule 8(b)
                           {"t_hold_end_s", number(e.t_hold_end)},
                           {"conflicting_obligation", e.conflicting_obligation},
                           {"compliant", e.compliant}});

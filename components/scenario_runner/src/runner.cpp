@@ -261,7 +261,8 @@ std::string launch_file(const Scenario& s, const std::string& world_path, const 
   return y.str();
 }
 
-RunRecorder::RunRecorder(const Scenario& s) : s_(s) {
+RunRecorder::RunRecorder(const Scenario& s, FixedObstacles obstacles) : s_(s) {
+  run_.obstacles = std::move(obstacles);
   run_.safety_distance = s.safety_distance;
   run_.goal = s.goal;
 }
@@ -300,23 +301,7 @@ void RunRecorder::guidance(const GuidanceRecord& r) {
   if (run_.guidance.empty() || r.t > run_.guidance.back().t) run_.guidance.push_back(r);
 }
 
-void RunRecorder::fixed_polygon(uint32_t feature_id, const std::vector<geom::Vec2>& ring) {
-  if (ring.size() < 3) return;
-  const auto key = std::make_tuple(feature_id, ring.size(), ring[0].x, ring[0].y);
-  if (polygons_.count(key)) return;
-  Polygon poly;
-  poly.vertices = ring;
-  polygons_.emplace(key, std::move(poly));
-}
-
-void RunRecorder::fixed_point(double x, double y) { points_.insert({x, y}); }
-
 Metrics RunRecorder::evaluate(double wall_s) {
-  for (auto& [key, poly] : polygons_) run_.obstacles.polygons.push_back(std::move(poly));
-  polygons_.clear();
-  std::vector<geom::Vec2> points;
-  for (const auto& [x, y] : points_) points.push_back({x, y});
-  add_point_obstacles(run_.obstacles, points, 0.5);  // point features; boundary points are dropped
   Metrics m = scenario_runner::evaluate(run_, evaluation_params(s_, run_.own.length), s_.criteria);
   m.wall_s = wall_s;
   return m;

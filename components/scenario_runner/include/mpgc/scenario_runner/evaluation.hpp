@@ -160,7 +160,7 @@ struct EvaluationParams {
   double delta_course_md = geo::deg2rad(2.0);   // [rad] minimum detectable course change
   double delta_speed_md = 0.2;                  // [-] minimum detectable speed change / original
   // Rule 8(b): an alteration of course or speed "large enough to be readily apparent"
-  // (EncounterResult::readily_apparent; reported, not yet a verdict).
+  // (EncounterResult::readily_apparent, a verdict of every give-way encounter).
   double delta_course_app = geo::deg2rad(30.0); // [rad] readily apparent course change
   double delta_speed_reduction_app = 0.5;       // [-] readily apparent speed reduction / original
   double theta_sm_lim = geo::deg2rad(10.0);     // [rad] course change that counts as a starboard
@@ -192,7 +192,9 @@ struct RequiredEncounter {
   // Situation expected at the start; kNone = accept any (only the verdict is required).
   colreg::EncounterType situation = colreg::EncounterType::kNone;
   bool check_situation = false;  // true: the classified situation must equal `situation`
-  bool compliant = true;         // the encounter's COLREG verdict must be compliant
+  // true: the encounter's COLREG verdict must be compliant; false: it must show a violation (a run
+  // without COLREG, seed 000 Figs. 8 and 12). Either way a verdict that cannot be judged fails.
+  bool compliant = true;
 };
 
 struct PassCriteria {
@@ -232,15 +234,20 @@ struct EncounterResult {
   // Along-track position of the own ship relative to the target's bow when it crossed the target's
   // course line (first crossing within the encounter): > 0 ahead, < 0 astern; NaN if never.
   double bow_crossing = kNaN;  // [m]
-  // First detected course manoeuvre of the own ship in [t_start, t_cpa].
-  double t_manoeuvre = kNaN;  // [s]
+  // The own ship's course manoeuvres made for this encounter: detected in [t_start, t_cpa] and
+  // begun while this target was a risk of collision (closing, predicted CPA < r_pref from the
+  // states before the change). A turn made for another ship that was no risk then is not judged
+  // here. The encounter's manoeuvre is the first of them that reached theta_sm_lim.
+  int manoeuvres = 0;         // [-] made for this encounter (wobbles below theta_sm_lim included)
+  double t_manoeuvre = kNaN;  // [s] detection of the encounter's manoeuvre; NaN: none
   Side manoeuvre_side = Side::kNone;
-  double max_starboard_change = 0.0;  // [rad] largest course change to starboard in [t_start, t_cpa]
+  double max_starboard_change = 0.0;  // [rad] largest course change to starboard, from the course
+                                      //   held before the encounter's manoeuvre up to t_cpa (0: none)
   double max_port_change = 0.0;       // [rad] largest course change to port (positive number)
-  double max_speed_reduction = 0.0;   // [-] largest speed reduction / initial speed, same window
-  // Rule 8(b), for a give-way situation (head-on, crossing give-way, overtaking): the largest
-  // course change reached delta_course_app or the speed reduction delta_speed_reduction_app.
-  // kNotApplicable otherwise. Reported only: it does not enter `compliant` (yet).
+  double max_speed_reduction = 0.0;   // [-] largest speed reduction / speed at t_start, to t_cpa
+  // Rule 8(b), for a give-way situation (head-on, crossing give-way, overtaking): the encounter's
+  // largest course change reached delta_course_app or the speed reduction
+  // delta_speed_reduction_app; part of `compliant`. kNotApplicable otherwise.
   Verdict readily_apparent = Verdict::kNotApplicable;
 
   // Verdicts (kNotApplicable where the rule does not ask for it).

@@ -121,7 +121,8 @@ std::string launch_file(const Scenario& s, const std::string& world_path, const 
 // union of all versions, not the last one, is what the ship sailed past).
 class RunRecorder {
  public:
-  explicit RunRecorder(const Scenario& s);
+  // `obstacles`: the scenario's own (scenario_obstacles), which the run is judged against.
+  RunRecorder(const Scenario& s, FixedObstacles obstacles);
 
   struct Ship {
     uint32_t id = 0;
@@ -139,20 +140,16 @@ class RunRecorder {
   // A plan: NO_PATH when it has fewer than two waypoints; dropped when older than the last.
   void plan(PlanRecord r);
   void guidance(const GuidanceRecord& r);  // dropped unless later than the last
-  void fixed_polygon(uint32_t feature_id, const std::vector<geom::Vec2>& ring);  // each once
-  void fixed_point(double x, double y);
 
   RunRecord& run() { return run_; }
   const RunRecord& run() const { return run_; }
-  // The run is over: its fixed obstacles (point features; boundary points dropped) and metrics.
+  // The run is over: its metrics.
   Metrics evaluate(double wall_s);
 
  private:
   const Scenario& s_;
   RunRecord run_;
   std::size_t targets_ = 0;
-  std::map<std::tuple<uint32_t, std::size_t, double, double>, Polygon> polygons_;
-  std::set<std::pair<double, double>> points_;
 };
 
 // The health news of a run (the view is rt::HealthBoard's, on the run's simulated clock in ns): a component's
