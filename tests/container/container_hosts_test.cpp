@@ -39,9 +39,9 @@ TEST(ContainerHosts, EachHostItsOwnContainerAndTheLoopIsTheSingleHostLoop) {
   fs::remove_all(tmp);
   const std::string scenario =
       mpgc::testing::shared_data("encounters/dnv/baseline_situations_generated/traffic_situation_02.json");
-  out = capture(bin + "/mpgc_run " + scenario + " --quiet --out " + (tmp / "single").string(), &rc);
+  out = capture(bin + "/mpgc_run " + scenario + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --out " + (tmp / "single").string(), &rc);
   ASSERT_EQ(rc, 0) << out;
-  out = capture(bin + "/mpgc_run " + scenario + " --quiet --hosts " + src + "/deploy/hosts/three-hosts.yaml --containers --out " +
+  out = capture(bin + "/mpgc_run " + scenario + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --hosts " + src + "/deploy/hosts/three-hosts.yaml --containers --out " +
                     (tmp / "containers").string(),
                 &rc);
   ASSERT_EQ(rc, 0) << out;

@@ -50,13 +50,13 @@ TEST(SecureHosts, SecuredThreeHostLoopIsTheOpenLoopAndIntrudersGetNothingIn) {
   const std::string scenario =
       mpgc::testing::shared_data("encounters/dnv/baseline_situations_generated/traffic_situation_02.json");
   const std::string single = (tmp / "single").string(), secured = (tmp / "secured").string();
-  out = capture(bin + "/mpgc_run " + scenario + " --quiet --out " + single, &rc);
+  out = capture(bin + "/mpgc_run " + scenario + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --out " + single, &rc);
   ASSERT_EQ(rc, 0) << out;
 
   const int domain = mpgc::testing::unique_domain();
   auto run = std::async(std::launch::async, [&] {
     int code = 0;
-    std::string o = capture(bin + "/mpgc_run " + scenario + " --quiet --hosts " + src + "/deploy/hosts/three-hosts.yaml --secure " +
+    std::string o = capture(bin + "/mpgc_run " + scenario + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --hosts " + src + "/deploy/hosts/three-hosts.yaml --secure " +
                                 pki + " --domain " + std::to_string(domain) + " --out " + secured,
                             &code);
     return std::make_pair(code, o);

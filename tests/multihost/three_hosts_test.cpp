@@ -62,9 +62,9 @@ void expect_no_lab_left() {
 TEST(ThreeHosts, LockstepLoopIsTheSingleHostLoopBitForBitAndNoPacketLeavesTheLinks) {
   if (geteuid() != 0) GTEST_SKIP() << "network namespaces need root (CI runs as root)";
   const std::string single = out_dir("single"), multi = out_dir("multi");
-  const auto a = run(scenario() + " --quiet --out " + single);
+  const auto a = run(scenario() + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --out " + single);
   ASSERT_EQ(a.code, 0) << a.output;
-  const auto b = run(scenario() + " --quiet --hosts " + deployment() + " --capture --out " + multi);
+  const auto b = run(scenario() + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --hosts " + deployment() + " --capture --out " + multi);
   ASSERT_EQ(b.code, 0) << b.output;
   const std::string ts1 = slurp(fs::path(single) / "dnv_02_CR-GW" / "timeseries.csv");
   const std::string ts3 = slurp(fs::path(multi) / "dnv_02_CR-GW" / "timeseries.csv");
@@ -104,7 +104,7 @@ TEST(ThreeHosts, LockstepLoopIsTheSingleHostLoopBitForBitAndNoPacketLeavesTheLin
 TEST(ThreeHosts, LossyDelayedLinkAndACutStillPassTheScenario) {
   if (geteuid() != 0) GTEST_SKIP() << "network namespaces need root (CI runs as root)";
   const std::string dir = out_dir("lossy");
-  const auto r = run(scenario() + " --quiet --hosts " + deployment() +
+  const auto r = run(scenario() + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --hosts " + deployment() +
                        " --link 'loss 20% delay 50ms' --link-seed 7 --cut autonomy@500+5 --realtime-factor 20 --out " + dir);
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("network: cut autonomy at sim"), std::string::npos) << r.output;

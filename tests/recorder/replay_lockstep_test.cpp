@@ -109,7 +109,7 @@ TEST(ReplayLockstep, RecordedSensorsGiveTheRecordedTracksAndPlansAgain) {
   const std::string bin = mpgc::testing::bin_dir();
   const std::string scenario =
       mpgc::testing::shared_data("encounters/dnv/baseline_situations_generated/traffic_situation_02.json");
-  const auto run = mpgc::testing::shell(bin + "/mpgc_run " + scenario + " --quiet --out " + (dir / "rec").string() + " 2>&1");
+  const auto run = mpgc::testing::shell(bin + "/mpgc_run " + scenario + " --quiet --baseline " + mpgc::testing::source_dir() + "/scenarios/baseline.json --out " + (dir / "rec").string() + " 2>&1");
   ASSERT_EQ(run.code, 0) << run.output;
   const fs::path run_dir = dir / "rec" / "dnv_02_CR-GW";
 
