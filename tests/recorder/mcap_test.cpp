@@ -2,6 +2,8 @@
 // summary), a file cut short reads to its cut, and a file that is not MCAP is named as such.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +14,7 @@
 #include "mpgc/msg/all.hpp"
 #include "mpgc/recorder/mcap.hpp"
 #include "mpgc/recorder/recording.hpp"
+#include "mpgc/testing.hpp"
 #include "mpgc/topics.hpp"
 
 namespace mcap = mpgc::mcap;
@@ -110,6 +113,24 @@ TEST(Mcap, ACorruptChunkIsAnError) {
   }
   EXPECT_THROW(all_messages(path), mcap::Error);
   fs::remove(path);
+}
+
+// fuzz_mcap's finding: a zstd chunk of 216 bytes whose header claims 4 GB. The reader used to
+// allocate (and zero) the claimed size before decompressing; now it streams, so reading the file
+// is an error that costs kilobytes (max RSS grows by far less than the claim).
+TEST(Mcap, AChunkClaimingGigabytesIsAnErrorWithoutAllocatingThem) {
+  const std::string path = mpgc::testing::source_dir() + "/tests/fuzz/corpus/mcap/oom_chunk_claims_4gb_1.mcap";
+  rusage before{};
+  getrusage(RUSAGE_SELF, &before);
+  try {
+    all_messages(path);
+    ADD_FAILURE() << "no error";
+  } catch (const mcap::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("header says 4143972824"), std::string::npos) << e.what();
+  }
+  rusage after{};
+  getrusage(RUSAGE_SELF, &after);
+  EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 256 * 1024) << "KiB of max RSS while reading";  // 4 GB before
 }
 
 // Every topic of topics.hpp names a type of idl/ with its schema: the recorder needs no list.
