@@ -50,6 +50,12 @@ TEST(ContainerHosts, EachHostItsOwnContainerAndTheLoopIsTheSingleHostLoop) {
     EXPECT_NE(log.find(std::string("[launch] started ") + h + " (pid"), std::string::npos) << log.substr(0, 2000);
   EXPECT_NE(log.find("podman run --rm --name"), std::string::npos);
   EXPECT_NE(log.find("[bridge-pc] [launch] started guidance_control"), std::string::npos);
+  // The recorder runs in the evaluator's host's container too and leaves the run's recording.
+  EXPECT_NE(log.find("[bridge-pc] [launch] started recorder"), std::string::npos);
+  const std::string info = capture(bin + "/mpgc_inspect " + (tmp / "containers" / "dnv_02_CR-GW" / "run.mcap").string(), &rc);
+  EXPECT_EQ(rc, 0) << info;
+  EXPECT_NE(info.find("indexed:     yes"), std::string::npos) << info;
+  EXPECT_NE(info.find("nav/own_state"), std::string::npos) << info;
   const std::string a = slurp(tmp / "single" / "dnv_02_CR-GW" / "timeseries.csv");
   const std::string b = slurp(tmp / "containers" / "dnv_02_CR-GW" / "timeseries.csv");
   ASSERT_GT(a.size(), 1000u);

@@ -67,7 +67,7 @@ struct RunOptions {
   bool containers = false;       // with hosts: each host a podman container (deploy/container)
   std::string image = "localhost/mpgc:bookworm";
   double plan_latency = 0.0;     // [s] per planner iteration: plans take effect late (opp plan.latency_per_iteration)
-  bool record = true;            // mpgc_record writes the bus to <run>/run.mcap (not yet with --containers)
+  bool record = true;            // mpgc_record writes the bus to <run>/run.mcap
   int view_port = 0;             // the recorder serves the live view on 127.0.0.1:<port>; 0: no live view
 };
 
