@@ -336,6 +336,7 @@ struct Episode {
   std::size_t detected = 0;  // sample at which the change reached delta_course_md
   std::size_t to = 0;        // last sample of the manoeuvre
   Side side = Side::kNone;
+  double change = 0.0;       // [rad] largest course change from the course at `from`, up to `to`
 };
 
 std::vector<Episode> course_episodes(const RunRecord& run, const EvaluationParams& p) {
@@ -358,6 +359,10 @@ std::vector<Episode> course_episodes(const RunRecord& run, const EvaluationParam
       in = false;
     }
   }
+  for (Episode& ep : out) {
+    const double chi = course(own[ep.from]);
+    for (std::size_t i = ep.from; i <= ep.to; ++i) ep.change = std::max(ep.change, std::fabs(geo::angle_diff(course(own[i]), chi)));
+  }
   return out;
 }
 
@@ -378,10 +383,8 @@ void attribute(EncounterResult& e, const RunRecord& run, const ShipTrack& tgt, s
     const colreg::Cpa c = colreg::cpa(kin(own[ep.from]), kin(tg[ep.from]));
     if (!(c.tcpa > 0.0 && c.dcpa < p.colreg.cpa_risk)) continue;
     ++e.manoeuvres;
-    double change = 0.0;
+    if (ep.change < p.theta_sm_lim || !std::isnan(e.t_manoeuvre)) continue;
     const double chi = course(own[ep.from]);
-    for (std::size_t i = ep.from; i <= ep.to; ++i) change = std::max(change, std::fabs(geo::angle_diff(course(own[i]), chi)));
-    if (change < p.theta_sm_lim || !std::isnan(e.t_manoeuvre)) continue;
     e.t_manoeuvre = t[ep.detected];
     e.manoeuvre_side = ep.side;
     for (std::size_t i = ep.from; i <= kcpa; ++i) {
