@@ -136,8 +136,9 @@ sr::EncounterResult stand_on(const std::vector<Order>& orders) {
 }
 
 TEST(ColregVerdicts, StandOnHoldingCourseUntilStage3IsCompliant) {
-  // Range falls below 1100 m at t = (2828 - 1100) / 9.9 = 175 s; the own ship turns at 190 s.
-  const auto e = stand_on({{190, deg2rad(40), 7}});
+  // Range falls below r_colregs_3_max = 400 m at t = (2828 - 400) / 9.9 = 245 s; the own ship
+  // turns at 250 s.
+  const auto e = stand_on({{250, deg2rad(40), 7}});
   EXPECT_EQ(e.situation, EncounterType::kCrossingStandOn);
   EXPECT_EQ(e.role, Role::kStandOn);
   EXPECT_EQ(e.held_course_and_speed, Verdict::kPass);
@@ -146,7 +147,8 @@ TEST(ColregVerdicts, StandOnHoldingCourseUntilStage3IsCompliant) {
 }
 
 TEST(ColregVerdicts, StandOnChangingCourseEarlyIsFlagged) {
-  const auto e = stand_on({{60, deg2rad(20), 7}});  // range 2240 m: still stage 2
+  const auto e = stand_on({{60, deg2rad(20), 7}});  // range 2240 m: stage 2
+  EXPECT_EQ(stand_on({{190, deg2rad(40), 7}}).held_course_and_speed, Verdict::kFail);  // 947 m: not yet stage 3
   EXPECT_EQ(e.situation, EncounterType::kCrossingStandOn);
   EXPECT_EQ(e.held_course_and_speed, Verdict::kFail);
   EXPECT_FALSE(e.compliant);
@@ -206,7 +208,7 @@ TEST(ColregVerdicts, ScaledToKvlcc2) {
   EXPECT_DOUBLE_EQ(p.scale, 32.0);
   EXPECT_DOUBLE_EQ(p.r_min_cpa, 3200.0);  // = d_safety = 10 Lpp of seed 000
   EXPECT_DOUBLE_EQ(p.r_colregs_2_max, 80000.0);
-  EXPECT_DOUBLE_EQ(p.r_colregs_3_max, 35200.0);
+  EXPECT_DOUBLE_EQ(p.r_colregs_3_max, 12800.0);  // 4 r_min_cpa = 40 Lpp
   EXPECT_NEAR(p.manoeuvre_window(), 2.0 / 0.3 * 32.0, 1e-9);
   EXPECT_DOUBLE_EQ(p.colreg.d_colreg, 80000.0);
   EXPECT_DOUBLE_EQ(p.delta_course_md, deg2rad(2.0));  // angles do not scale
@@ -228,7 +230,9 @@ TEST(ColregVerdicts, DefaultsAreTheNtnuEvaluatorThresholds) {
   const YAML::Node y = YAML::LoadFile(mpgc::testing::shared_data("encounters/ntnu_canonical/evaluator.yaml"))["evaluator"];
   const sr::EvaluationParams p;
   EXPECT_DOUBLE_EQ(p.r_colregs_2_max, y["r_colregs_2_max"].as<double>());
-  EXPECT_DOUBLE_EQ(p.r_colregs_3_max, y["r_colregs_3_max"].as<double>());
+  // The one departure (evaluation.hpp): the stand-on may act from 4 r_min_cpa, not NTNU's 11.
+  EXPECT_DOUBLE_EQ(y["r_colregs_3_max"].as<double>(), 1100.0);
+  EXPECT_DOUBLE_EQ(p.r_colregs_3_max, 4.0 * p.r_min_cpa);
   EXPECT_DOUBLE_EQ(p.r_colregs_4_max, y["r_colregs_4_max"].as<double>());
   EXPECT_DOUBLE_EQ(p.r_pref, y["r_pref"].as<double>());
   EXPECT_DOUBLE_EQ(p.r_min_cpa, y["r_min_cpa"].as<double>());

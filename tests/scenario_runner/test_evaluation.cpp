@@ -308,7 +308,7 @@ TEST(Evaluation, RequiredViolationAndUnjudgedVerdictsFail) {
     EXPECT_NE(m.failures[0].find("not judged: never within r_colregs_2_max"), std::string::npos) << m.failures[0];
   }
   // A stand-on target first met inside r_colregs_3_max: no course and speed to hold.
-  auto close = sail(3, 10, 700, -600, kPi / 2, 7, {}, t);  // predicted CPA 71 m
+  auto close = sail(3, 10, 300, -220, kPi / 2, 7, {}, t);  // range 372 m < 400 m, predicted CPA 57 m
   r = sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {}, t), {close}, 50.0);
   c.required[0].compliant = true;
   m = sr::evaluate(r, {}, c);

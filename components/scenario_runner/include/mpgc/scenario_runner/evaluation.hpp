@@ -134,9 +134,16 @@ struct RunRecord {
 //     long)
 // The reference length is chosen so that r_min_cpa = 10 L: for the paper scenarios (KVLCC2,
 // Lpp = 320 m, s = 32) the minimum acceptable CPA equals the paper's d_safety = 10 Lpp (seed 000
-// §7), stage ranges become 250 / 110 / 20 Lpp and the manoeuvre window 213 s. Consequence: the
-// paper's targets start about 100 Lpp away, already inside stage 3, so the stand-on "hold course
-// and speed" verdict is not applicable there unless a scenario sets r_colregs_3_max lower.
+// §7), stage ranges become 250 / 40 / 20 Lpp and the manoeuvre window 213 s.
+//
+// One departure from the NTNU file: r_colregs_3_max, the range inside which a stand-on ship may
+// act alone (rule 17(a)(ii)), is 4 r_min_cpa, not 11 (1100 m). Rule 17 names no range, only the
+// condition ("as soon as it becomes apparent" that the give-way ship is not acting); scaled by
+// length, NTNU's 11 r_min_cpa is 5.5 NM at the DNV suite's 0.5 NM and 110 Lpp in the paper suite,
+// beyond where nearly every standard encounter starts (DNV: 10-20 min vector times), so the
+// stand-on's first duty, holding course and speed (17(a)(i)), could never be judged. At 4 r_min_cpa
+// (2 NM at 0.5 NM, 40 Lpp) the window to hold is the approach from the encounter's start, and the
+// stand-on still has twice the stage-4 range (r_colregs_4_max = 2 r_min_cpa, 17(b)) to act in.
 struct EvaluationParams {
   double reference_length = 10.0;  // [m] ship length the defaults are meant for
   double scale = 1.0;              // [-] s applied to the defaults (informational; set by scaled_to)
@@ -145,7 +152,7 @@ struct EvaluationParams {
   // (its situation and roles are classified then); a stand-on ship may act below r_colregs_3_max
   // (rule 17(a)(ii)); below r_colregs_4_max both ships must act.
   double r_colregs_2_max = 2500.0;  // [m]
-  double r_colregs_3_max = 1100.0;  // [m]
+  double r_colregs_3_max = 400.0;   // [m] 4 r_min_cpa (NTNU: 1100, see above)
   double r_colregs_4_max = 200.0;   // [m]
   double r_pref = 190.0;            // [m] preferred passing distance; wider predicted CPA = no risk
   double r_min_cpa = 100.0;         // [m] minimum acceptable CPA (keeping clear when overtaking)
