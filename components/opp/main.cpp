@@ -191,7 +191,11 @@ int main(int argc, char** argv) {
       auto wall = &st->wall;
       hooks.elapsed = [wall] { return wall->now_s(); };
       const bool warm = p.warm_start && st->warm_goal == goal.goal_id && !st->last_path.empty();
-      const opp::Result r = planner->solve(setup.request(p.objective, warm ? st->last_path : std::vector<opp::Vec2>{}), hooks);
+      const opp::StandOnHold hold = opp::stand_on_hold(p, setup);
+      if (hold.time > 0) c->count("plans.stand_on_hold");
+      if (!hold.why_not.empty()) c->log().debug("no stand-on hold: {}", hold.why_not);
+      const opp::Result r = opp::solve_with_hold(*planner, setup, p.objective, hold,
+                                                 warm ? st->last_path : std::vector<opp::Vec2>{}, hooks);
       st->policy.planned(now, goal.goal_id, targets, !r.path.empty());
 
       msg::Path out;

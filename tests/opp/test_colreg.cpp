@@ -124,3 +124,25 @@ TEST(ColregPinned, NoneIsThePerLegModel) {
     EXPECT_EQ(opp::colreg_check_pinned(kOwn, kNorth, y, {-6, 0}, {}, kP).compliant,
               opp::colreg_check(kOwn, kNorth, y, {-6, 0}, kP).compliant);
 }
+
+// Rule 8(b): hold the pinned course or alter by at least apparent_turn (30 deg) while closing.
+TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
+  const opp::Vec2 w{-6, 0}, y{6000, -300};  // head-on, slightly to port
+  const auto ho = pinned(opp::Obligation::kHeadOn);
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, kNorth, y, w, ho, kP));      // holding course
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(4), y, w, ho, kP));  // within the tolerance
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, ho, kP));  // a small alteration
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(29), y, w, ho, kP));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, ho, kP));
+  // Opening: passed, any course back to the route.
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), {-2000, -800}, w, ho, kP));
+  // Overtaking: either side, but apparent.
+  const auto ot = pinned(opp::Obligation::kOvertaking);
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(-15), {3000, 0}, {3, 0}, ot, kP));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(-35), {3000, 0}, {3, 0}, ot, kP));
+  // Disabled with apparent_turn = 0; no duty (per-leg model): nothing to check.
+  opp::ColregParams off = kP;
+  off.apparent_turn = 0.0;
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), y, w, ho, off));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), y, w, {}, kP));
+}

@@ -214,3 +214,45 @@ TEST(OppNode, ConnectGoalOffConnectsOnlyFromGoalSamples) {
 }
 
 }  // namespace
+
+// Rule 17(a)(i): a target crossing from port on a collision course (own ship stand-on) is held
+// for: course and speed kept until it is stand_on_range x d_safety away, acting only from there.
+TEST(OppNode, AStandOnShipHoldsCourseAndSpeedUntilItMayAct) {
+  opp::NodeParams p = declared({"plan.max_iterations=3000"});
+  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};  // north at 5 m/s
+  const opp::GoalSpec goal{{30000, 0}, std::nan(""), 0, 5, 1000, true};
+  // Meets the own ship at (10000, 0) at t = 2000 s, from the port bow heading east.
+  const std::vector<opp::Target> tg = {{3, {10000, -8000}, {0, 4}, {}}};
+  opp::Setup s = opp::build_setup(p, own, goal, tg, {}, 0);
+  const opp::StandOnHold h = opp::stand_on_hold(p, s);
+  ASSERT_GT(h.time, 0.0) << h.why_not;
+  EXPECT_EQ(h.target, 3u);
+  EXPECT_NEAR(h.end.y, 0.0, 1e-6);                                 // along the present course
+  const opp::Vec2 tgt_then = tg[0].p + h.time * tg[0].v;
+  EXPECT_NEAR(opp::norm(h.end - tgt_then), 3500.0, 1e-6);          // 3.5 d_safety
+  EXPECT_NEAR(h.end.x, 5.0 * h.time, 1e-6);                        // at the present speed
+
+  auto planner = opp::make_planner("rrtstar");
+  const opp::Result r = opp::solve_with_hold(*planner, s, p.objective, h, {}, {});
+  ASSERT_FALSE(r.path.empty()) << r.reason;
+  EXPECT_EQ(r.path[0].p.x, 0.0);
+  EXPECT_EQ(r.path[1].p.x, h.end.x);
+  EXPECT_DOUBLE_EQ(r.path[1].t, h.time);
+  EXPECT_NE(r.reason.find("stand-on (rule 17(a))"), std::string::npos) << r.reason;
+  EXPECT_LT(opp::norm(r.path.back().p - goal.p), 1.0);
+
+  // Already within 3.5 d_safety: may act now, no hold.
+  opp::Setup close = opp::build_setup(p, {{8000, 0}, 0.0, 5.0, 0.0, 0.0}, goal, {{3, {10000, -1600}, {0, 4}, {}}}, {}, 0);
+  EXPECT_EQ(opp::stand_on_hold(p, close).time, 0.0);
+  // Switched off.
+  EXPECT_EQ(opp::stand_on_hold(declared({"plan.stand_on_range=0"}), s).time, 0.0);
+  // Giving way to another ship (a pinned duty): rule 16 first, no hold, and why.
+  s.problem.targets.push_back({4, {9000, 6000}, {0, -3}, {}});
+  s.problem.targets.back().pinned.obligation = opp::Obligation::kCrossingGiveWay;
+  const opp::StandOnHold g = opp::stand_on_hold(p, s);
+  EXPECT_EQ(g.time, 0.0);
+  EXPECT_NE(g.why_not.find("giving way to target 4"), std::string::npos) << g.why_not;
+  // A ship crossing from starboard (own ship gives way) is no reason to hold.
+  opp::Setup gw = opp::build_setup(p, own, goal, {{5, {10000, 8000}, {0, -4}, {}}}, {}, 0);
+  EXPECT_EQ(opp::stand_on_hold(p, gw).time, 0.0);
+}

@@ -48,6 +48,15 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
   return out;
 }
 
+bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
+  if (!(p.apparent_turn > p.port_tolerance) || e.obligation == Obligation::kNone) return true;
+  if (norm(v) < p.min_speed || dot(y0 - x0, v - w) <= 0.0) return true;  // not closing: no action owed
+  if (e.obligation == Obligation::kCrossingGiveWay && across_astern(e, w, x0 - y0)) return true;
+  const double turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi);
+  const double a = e.obligation == Obligation::kOvertaking ? std::fabs(turn) : turn;
+  return !(a > p.port_tolerance && a < p.apparent_turn);
+}
+
 ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p) {
   ColregCheck out;
   const double vn = norm(v), wn = norm(w);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/opp/registry.hpp"
+#include "mpgc/opp/validity.hpp"
 #include "mpgc/runtime/params.hpp"
 
 namespace mpgc::opp {
@@ -32,6 +34,9 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
          "theta_h of §5.5: head-on when one velocity is within it of the other's reciprocal");
   ps.add("plan.port_tolerance", &c.colreg.port_tolerance, geo::deg2rad(5.0), "rad", 0.0, 1.5,
          "a pinned head-on / give-way leg may point this far to port of the course at the encounter's start");
+  ps.add("plan.apparent_turn", &c.colreg.apparent_turn, geo::deg2rad(30.0), "rad", 0.0, 3.1,
+         "rule 8(b): while closing a pinned give-way / head-on / overtaking target, hold the pinned course or alter "
+         "by at least this (0: any alteration)");
   ps.add("plan.escape_start", &c.escape_start, true,
          "start within d_safety (target moved in): still plan; the first leg may not get closer (else INVALID_INPUT)");
   ps.add("plan.gamma_s", &o.gamma_s, 500.0, "m/rad^2", 0.0, 1e9, "weight of the steering cost (eq. 6)");
@@ -58,6 +63,9 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
          "risk of collision: CPA inside this many d_safety (about the NTNU evaluator's r_pref / r_min_cpa, 1.9)");
   ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 0.0, "s", 0.0, 86400.0,
          "a risk of collision within this time pins the encounter (0: the straight-line time to the goal)");
+  ps.add("plan.stand_on_range", &p.stand_on_range, 3.5, "-", 0.0, 100.0,
+         "rule 17(a): hold course and speed for a target the own ship stands on for until it is this many d_safety "
+         "away (the evaluation lets a stand-on ship act from 4 r_min_cpa); 0: no hold");
   ps.add("encounter.abaft_beam", &p.sector_abaft_beam, geo::deg2rad(22.5), "rad", 0.01, 1.5,
          "rule 13 sector of pinned and reported encounters: overtaking from more than this abaft the beam");
   ps.add("encounter.head_on", &p.sector_head_on, geo::deg2rad(22.5), "rad", 0.01, 1.5,
@@ -133,6 +141,100 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   ep.abaft_beam = p.sector_abaft_beam;
   ep.head_on_sector = p.sector_head_on;
   return ep;
+}
+
+StandOnHold stand_on_hold(const NodeParams& p, const Setup& s) {
+  StandOnHold h;
+  const Problem& pb = s.problem;
+  if (!pb.colreg || !(p.stand_on_range > 0.0) || s.own.speed() < 0.5) return h;
+  const EncounterMemoryParams ep = encounter_params(p, s);
+  colreg::ColregParams cp;
+  cp.abaft_beam = ep.abaft_beam;
+  cp.head_on_sector = ep.head_on_sector;
+  cp.d_colreg = std::numeric_limits<double>::infinity();
+  cp.cpa_risk = ep.cpa_risk;
+  cp.tcpa_max = ep.tcpa_max;
+  const double reach = p.stand_on_range * s.constraints.safety_distance;
+  const Vec2 v{s.own.vx, s.own.vy};
+  double t_hold = std::numeric_limits<double>::infinity();
+  for (const Target& t : pb.targets) {
+    if (t.pinned.obligation != Obligation::kNone) {
+      h.why_not = "giving way to target " + std::to_string(t.id) + " (rule 16 first)";
+      continue;
+    }
+    colreg::Assessment a;
+    try {
+      a = colreg::assess(s.own, {t.p.x, t.p.y, t.v.x, t.v.y}, cp);
+    } catch (const std::exception&) {
+      continue;  // non-finite: report_encounters names it
+    }
+    if (!a.risk || (a.type != colreg::EncounterType::kCrossingStandOn && a.type != colreg::EncounterType::kOvertaken))
+      continue;
+    // First time the range |r0 + (v - w) t| falls to `reach`.
+    const Vec2 r0 = pb.start - t.p, vr = v - t.v;
+    const double A = dot(vr, vr), B = dot(r0, vr), C = dot(r0, r0) - reach * reach;
+    double t_in = 0.0;
+    if (C > 0.0) {
+      const double disc = B * B - A * C;
+      if (!(A > 0.0) || disc < 0.0) continue;  // never that close on present courses
+      t_in = (-B - std::sqrt(disc)) / A;
+      if (t_in < 0.0) continue;
+    }
+    if (t_in < t_hold) {
+      t_hold = t_in;
+      h.target = t.id;
+    }
+  }
+  if (!std::isfinite(t_hold) || !h.why_not.empty()) return StandOnHold{0, {}, 0, h.why_not.empty() ? "" : h.why_not};
+  if (t_hold < 1.0) return {};  // may act now (17(a)(ii))
+  const Vec2 end = pb.start + t_hold * v;
+  auto refuse = [&](const std::string& why) {
+    return StandOnHold{0, {}, h.target, "stand-on for target " + std::to_string(h.target) + ": " + why};
+  };
+  if (norm(end - pb.start) >= norm(pb.goal.p - pb.start)) return {};  // the goal comes first
+  if (pb.charted && !pb.charted->contains_by(end, s.constraints.safety_distance))
+    return refuse("holding course leaves the charted region");
+  const ValidityChecker vc(pb, s.constraints);
+  const double len = norm(end - pb.start);
+  if (!vc.fixed_clear(pb.start, end, vc.fixed_distance(true)))
+    return refuse("holding course passes within d_safety of a fixed obstacle");
+  // The stand-on targets themselves stay beyond `reach`; the others must be cleared (no COLREG:
+  // no duty is pinned, and the per-leg model would judge the very situation being held in).
+  Problem along = pb;
+  along.speed = s.own.speed();
+  const ValidityChecker vm(along, s.constraints);
+  if (vm.moving(pb.start, 0.0, end, len, ColregLevel::kNone, s.constraints.escape_start) != ValidityChecker::kValid)
+    return refuse("holding course passes within d_safety of a target");
+  h.time = t_hold;
+  h.end = end;
+  return h;
+}
+
+Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& objective, const StandOnHold& hold,
+                       std::vector<Vec2> warm, const Hooks& hooks) {
+  if (!(hold.time > 0.0)) return planner.solve(s.request(objective, std::move(warm)), hooks);
+  Problem from = s.problem;
+  from.start = hold.end;
+  from.heading = s.own.course();
+  for (Target& t : from.targets) t.p = t.p + hold.time * t.v;  // eq. 3 at the hold's end
+  const Bounds& b = s.problem.bounds;
+  from.bounds = {std::min(b.min_x, hold.end.x), std::min(b.min_y, hold.end.y), std::max(b.max_x, hold.end.x),
+                 std::max(b.max_y, hold.end.y)};
+  if (from.charted) from.bounds = from.bounds.intersect(*from.charted);
+  Result r = planner.solve(Request{from, s.constraints, objective, s.budget, warm}, hooks);
+  if (r.status == Status::kNoPath || r.status == Status::kInvalidInput) {
+    Result now = planner.solve(s.request(objective, std::move(warm)), hooks);
+    now.reason = "stand-on hold for target " + std::to_string(hold.target) + " given up (" + r.reason + ")" +
+                 (now.reason.empty() ? "" : "; " + now.reason);
+    return now;
+  }
+  // The planner's path starts at the hold's end at t = 0: the hold leg goes first.
+  for (Waypoint& w : r.path) w.t += hold.time;
+  r.path.insert(r.path.begin(), Waypoint{s.problem.start, 0.0});
+  const std::string held = "stand-on (rule 17(a)): course and speed held " + fmt(hold.time) + " s for target " +
+                           std::to_string(hold.target);
+  r.reason = r.reason.empty() ? held : held + "; " + r.reason;
+  return r;
 }
 
 std::vector<EncounterReport> report_encounters(const NodeParams& p, const Setup& s, std::vector<std::string>* rejected) {

@@ -34,6 +34,8 @@ void ConstraintParams::validate() const {
   require(fin(colreg.min_speed) && colreg.min_speed >= 0, "colreg.min_speed", "must be finite and >= 0");
   require(fin(colreg.port_tolerance) && colreg.port_tolerance >= 0 && colreg.port_tolerance < kPi, "colreg.port_tolerance",
           "must be in [0, pi)");
+  require(fin(colreg.apparent_turn) && colreg.apparent_turn >= 0 && colreg.apparent_turn < kPi, "colreg.apparent_turn",
+          "must be in [0, pi)");
   require(fin(colreg_spacing) && colreg_spacing > 0, "colreg_spacing", "must be finite and > 0");
 }
 

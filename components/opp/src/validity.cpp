@@ -56,6 +56,8 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
       const Vec2 ys = y + (s * inv_u_) * tg.v;
       if ((pinned || norm2(xs - ys) < dc2_) && !colreg_check_pinned(xs, vel, ys, tg.v, tg.pinned, c_.colreg).compliant)
         return kColreg;
+      if (pinned && level == ColregLevel::kFull && !colreg_check_apparent(xs, vel, ys, tg.v, tg.pinned, c_.colreg))
+        return kColreg;
     }
   }
   return kValid;

@@ -17,6 +17,11 @@ struct ColregParams {
   double min_speed = 0.05;                        // [m/s] below it a vessel has no route to cross
   double port_tolerance = 0.08726646259971647;    // [rad] a pinned head-on or give-way leg may point
                                                   // this far to port of the course it was pinned at (5 deg)
+  // Rule 8(b): an alteration for a pinned give-way, head-on or overtaking obligation must be
+  // "large enough to be readily apparent" (a succession of small ones avoided). While the range
+  // closes, a leg holds the course it was pinned at (within port_tolerance) or is altered by at
+  // least this much (colreg_check_apparent). 0 disables the band.
+  double apparent_turn = 0.5235987755982988;      // [rad] 30 deg, the NTNU evaluator's delta_course_app
 };
 
 // The situation of one leg in the project's one encounter vocabulary (colreg::EncounterType):
@@ -74,5 +79,12 @@ inline bool across_astern(const PinnedEncounter& e, Vec2 w, Vec2 r) {
 // first (eq. 15), until the own ship is across the target's track astern of it; overtaking: the
 // target first at x_c (§5.3).
 ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
+
+// Rule 8(b) for a leg against a pinned obligation (the full COLREG level only: the first
+// relaxation drops it, "if the circumstances of the case admit"): false when the range closes
+// along the leg and its course is altered from course0 by more than port_tolerance but less than
+// apparent_turn (to starboard; to either side when overtaking). A give-way leg already across the
+// target's track astern is free.
+bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
 
 }  // namespace mpgc::opp

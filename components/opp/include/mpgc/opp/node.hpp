@@ -48,6 +48,8 @@ struct NodeParams {
   double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
   double encounter_tcpa = 0;     // [s] risk of collision within this TCPA pins an encounter (0: the
                                  //     plan's horizon, the straight-line time to the goal)
+  double stand_on_range = 3.5;   // [-] x d_safety: a stand-on ship keeps course and speed until a
+                                 //     target it stands on for is this close (rule 17(a)); 0: no hold
   // Rule 13-15 sectors of the pinned and reported encounters (common colreg, not the planner's eq. 16 angle).
   double sector_abaft_beam = 0.39269908169872414;  // [rad] overtaking: more than this abaft the beam
   double sector_head_on = 0.39269908169872414;     // [rad] head-on: within this of each bow
@@ -117,6 +119,25 @@ std::string chart_wait(const NodeParams& p, const Setup& s, bool have_chart);
 // When a risk of collision pins an encounter, for this setup (encounter_cpa x d_safety; TCPA
 // within the plan's horizon; released beyond d_COLREG).
 EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s);
+
+// Rule 17(a)(i): where one ship is to keep out of the way, the other keeps her course and speed.
+// While a target the own ship stands on for (crossing stand-on, overtaken) is a risk of collision
+// and farther than stand_on_range x d_safety, and no target is pinned with a duty of the own ship
+// (rule 16 comes first), the plan's first leg holds the present course and speed until that range
+// is reached (the earliest over such targets); only from there may the ship act (17(a)(ii), (b)).
+struct StandOnHold {
+  double time = 0;      // [s] how long the course and speed are held (0: no hold)
+  Vec2 end;             // [m] where the hold ends
+  uint32_t target = 0;  // the target that ends it first
+  std::string why_not;  // a stand-on risk exists but is not held for, and why ("" otherwise)
+};
+StandOnHold stand_on_hold(const NodeParams& p, const Setup& s);
+
+// Plans `s` with `planner`; with a hold, the path is the hold leg and then the planner's path from
+// its end (targets advanced by eq. 3, times shifted), the reason saying so. When nothing can be
+// planned from the hold's end the ship acts now: the plain plan, its reason naming the hold given up.
+Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& objective,
+                       const StandOnHold& hold, std::vector<Vec2> warm, const Hooks& hooks);
 
 // One target as the planner reports it (plan/encounters): rule 13-15 assessment and bearing.
 struct EncounterReport {
