@@ -162,6 +162,20 @@ TEST(ColregVerdicts, StandOnChangingSpeedEarlyIsFlagged) {
   EXPECT_EQ(stand_on({{60, 0, 6.3}}).held_course_and_speed, Verdict::kPass);
 }
 
+// Stage 3 is a time too: overtaken from 300 m astern (inside r_colregs_3_max = 400 m) by a ship
+// 1 m/s faster, the CPA is 300 s away, far more than the 57 s the own ship takes to sail 400 m:
+// the stand-on holds until then.
+TEST(ColregVerdicts, OvertakenSlowlyFromCloseAsternStillHolds) {
+  const auto t = sr::synthetic::times(400, 1.0);
+  auto tgt = sail(1, 10, -300, 0, 0, 8, {}, t);
+  auto hold = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{250, deg2rad(40), 7}}, t), {tgt}));
+  EXPECT_EQ(hold.situation, EncounterType::kOvertaken);
+  EXPECT_NEAR(hold.tcpa_start, 300.0, 1e-6);
+  EXPECT_EQ(hold.held_course_and_speed, Verdict::kPass);  // turned at TCPA 50 s
+  auto early = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{100, deg2rad(40), 7}}, t), {tgt}));
+  EXPECT_EQ(early.held_course_and_speed, Verdict::kFail);  // turned at TCPA 200 s
+}
+
 TEST(ColregVerdicts, OvertakingKeepsClearOnlyWithEnoughCpa) {
   const auto t = sr::synthetic::times(600, 1.0);
   auto tgt = sail(1, 10, 1000, 0, 0, 3, {}, t);

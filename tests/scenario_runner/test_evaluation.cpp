@@ -314,7 +314,7 @@ TEST(Evaluation, RequiredViolationAndUnjudgedVerdictsFail) {
   m = sr::evaluate(r, {}, c);
   ASSERT_EQ(m.encounters[0].situation, mpgc::colreg::EncounterType::kCrossingStandOn);
   ASSERT_EQ(m.failures.size(), 1u);
-  EXPECT_NE(m.failures[0].find("stand-on from inside r_colregs_3_max"), std::string::npos) << m.failures[0];
+  EXPECT_NE(m.failures[0].find("stand-on from inside stage 3"), std::string::npos) << m.failures[0];
 }
 
 TEST(Evaluation, BadInputIsRejectedWithTheFieldNamed) {

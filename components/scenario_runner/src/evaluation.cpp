@@ -504,11 +504,18 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
       break;
     case EncounterType::kCrossingStandOn:
     case EncounterType::kOvertaken: {
-      // Rule 17(a)(i): keep course and speed until the stand-on ship may act (stage 3).
-      if (e.range_start < p.r_colregs_3_max) break;  // may act from the start: nothing to hold
+      // Rule 17(a)(i): keep course and speed until the stand-on ship may act (stage 3): the
+      // target within r_colregs_3_max and the CPA nearer in time than the own ship takes to sail
+      // that range. A ship overtaking slowly from close astern is not yet a reason to act.
+      auto may_act = [&](std::size_t i) {
+        if (range[i] >= p.r_colregs_3_max) return false;
+        return !(u0 > 0.1) || colreg::cpa(kin(own[i]), kin(tg[i])).tcpa < p.r_colregs_3_max / u0;
+      };
+      e.tcpa_start = colreg::cpa(kin(own[start]), kin(tg[start])).tcpa;
+      if (may_act(start)) break;  // may act from the start: nothing to hold
       bool held = true;
       std::size_t i = start;
-      for (; i <= end && range[i] >= p.r_colregs_3_max; ++i) {
+      for (; i <= end && !may_act(i); ++i) {
         if (std::fabs(geo::angle_diff(course(own[i]), chi0)) > p.delta_course_md) held = false;
         if (u0 > 0.1 && std::fabs(own[i].sog - u0) / u0 > p.delta_speed_md) held = false;
       }
@@ -560,8 +567,8 @@ std::string unjudged(const EncounterResult& e, const EvaluationParams& p) {
     if (e.conflicting_obligation)
       s << "stand-on while giving way to another ship (conflicting obligations)";
     else
-      s << "stand-on from inside r_colregs_3_max = " << p.r_colregs_3_max << " m (start range " << e.range_start
-        << " m): no course and speed to hold";
+      s << "stand-on from inside stage 3 (start range " << e.range_start << " m < r_colregs_3_max = " << p.r_colregs_3_max
+        << " m, TCPA " << e.tcpa_start << " s): no course and speed to hold";
   }
   return s.str();
 }

@@ -80,6 +80,7 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
                           {"beta_start_deg", deg(e.beta_start)},
                           {"alpha_start_deg", deg(e.alpha_start)},
                           {"dcpa_start_m", number(e.dcpa_start)},
+                          {"tcpa_start_s", number(e.tcpa_start)},
                           {"cpa_m", number(e.cpa)},
                           {"t_cpa_s", number(e.t_cpa)},
                           {"passing_side", to_string(e.passing_side)},

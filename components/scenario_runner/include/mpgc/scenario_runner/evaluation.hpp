@@ -144,6 +144,10 @@ struct RunRecord {
 // stand-on's first duty, holding course and speed (17(a)(i)), could never be judged. At 4 r_min_cpa
 // (2 NM at 0.5 NM, 40 Lpp) the window to hold is the approach from the encounter's start, and the
 // stand-on still has twice the stage-4 range (r_colregs_4_max = 2 r_min_cpa, 17(b)) to act in.
+// Stage 3 is a time too: the stand-on may act only once the CPA is also nearer than the time the
+// own ship takes to sail r_colregs_3_max (r_colregs_3_max / its speed at the encounter's start). A
+// faster ship overtaking from 1.6 NM astern at 5 kn more (DNV 05: TCPA 22 min) is within the range
+// but gives the overtaking ship all the time rule 13 asks of it.
 struct EvaluationParams {
   double reference_length = 10.0;  // [m] ship length the defaults are meant for
   double scale = 1.0;              // [-] s applied to the defaults (informational; set by scaled_to)
@@ -231,6 +235,7 @@ struct EncounterResult {
   colreg::Role role = colreg::Role::kNone;
   double t_start = kNaN;      // [s] start of the encounter
   double range_start = kNaN;  // [m]
+  double tcpa_start = kNaN;   // [s] stand-on only: time to the CPA at the start (stage 3 is also a time)
   double beta_start = kNaN;   // [rad] relative bearing of the target from the own bow at start
   double alpha_start = kNaN;  // [rad] relative bearing of the own ship from the target's bow
   double dcpa_start = kNaN;   // [m] predicted CPA at the start (constant velocities)
