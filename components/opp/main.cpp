@@ -73,9 +73,10 @@ int main(int argc, char** argv) {
       std::string stale;  // why no plan is made now ("" = inputs fresh)
       mpgc::rt::WallClock wall;  // planning time and budget are wall time, also on simulated time
       mpgc::nav::JumpGate jumps;
+      std::optional<double> held_course;  // rule 17(a): the course a stand-on hold keeps
     };
     auto st = std::make_shared<State>(State{{}, {}, {}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {},
-                                            mpgc::nav::JumpGate({p.jumps.max_speed, p.jumps.margin, p.max_state_age})});
+                                            mpgc::nav::JumpGate({p.jumps.max_speed, p.jumps.margin, p.max_state_age}), {}});
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
     auto* enc_out = &c->publisher<msg::EncounterList>(mpgc::topics::kPlanEncounters, mpgc::dds::QosProfile::latched());
@@ -191,8 +192,12 @@ int main(int argc, char** argv) {
       auto wall = &st->wall;
       hooks.elapsed = [wall] { return wall->now_s(); };
       const bool warm = p.warm_start && st->warm_goal == goal.goal_id && !st->last_path.empty();
-      const opp::StandOnHold hold = opp::stand_on_hold(p, setup);
-      if (hold.time > 0) c->count("plans.stand_on_hold");
+      const opp::StandOnHold hold = opp::stand_on_hold(p, setup, st->held_course);
+      st->held_course.reset();
+      if (hold.time > 0) {
+        c->count("plans.stand_on_hold");
+        st->held_course = hold.course;
+      }
       if (!hold.why_not.empty()) c->log().debug("no stand-on hold: {}", hold.why_not);
       const opp::Result r = opp::solve_with_hold(*planner, setup, p.objective, hold,
                                                  warm ? st->last_path : std::vector<opp::Vec2>{}, hooks);

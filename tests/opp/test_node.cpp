@@ -241,6 +241,10 @@ TEST(OppNode, AStandOnShipHoldsCourseAndSpeedUntilItMayAct) {
   EXPECT_NE(r.reason.find("stand-on (rule 17(a))"), std::string::npos) << r.reason;
   EXPECT_LT(opp::norm(r.path.back().p - goal.p), 1.0);
 
+  // Overtaken from 2 km astern (inside 3.5 d_safety) by a ship 2 m/s faster: the CPA is 1000 s
+  // away, the own ship sails 3500 m in 700 s, so it holds 300 s.
+  const opp::Setup ot = opp::build_setup(p, own, goal, {{6, {-2000, 0}, {7, 0}, {}}}, {}, 0);
+  EXPECT_NEAR(opp::stand_on_hold(p, ot).time, 300.0, 1e-6);
   // Already within 3.5 d_safety: may act now, no hold.
   opp::Setup close = opp::build_setup(p, {{8000, 0}, 0.0, 5.0, 0.0, 0.0}, goal, {{3, {10000, -1600}, {0, 4}, {}}}, {}, 0);
   EXPECT_EQ(opp::stand_on_hold(p, close).time, 0.0);

@@ -143,7 +143,7 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   return ep;
 }
 
-StandOnHold stand_on_hold(const NodeParams& p, const Setup& s) {
+StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<double> held) {
   StandOnHold h;
   const Problem& pb = s.problem;
   if (!pb.colreg || !(p.stand_on_range > 0.0) || s.own.speed() < 0.5) return h;
@@ -155,7 +155,8 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s) {
   cp.cpa_risk = ep.cpa_risk;
   cp.tcpa_max = ep.tcpa_max;
   const double reach = p.stand_on_range * s.constraints.safety_distance;
-  const Vec2 v{s.own.vx, s.own.vy};
+  h.course = held && std::isfinite(*held) ? *held : s.own.course();
+  const Vec2 v = s.own.speed() * Vec2{std::cos(h.course), std::sin(h.course)};
   double t_hold = std::numeric_limits<double>::infinity();
   for (const Target& t : pb.targets) {
     if (t.pinned.obligation != Obligation::kNone) {
@@ -180,16 +181,19 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s) {
       t_in = (-B - std::sqrt(disc)) / A;
       if (t_in < 0.0) continue;
     }
+    // ... and, as the evaluation's stage 3, until the CPA is nearer than the time the own ship
+    // takes to sail that range (an overtaking ship closing slowly from astern leaves time).
+    if (A > 0.0) t_in = std::max(t_in, -B / A - reach / s.own.speed());
     if (t_in < t_hold) {
       t_hold = t_in;
       h.target = t.id;
     }
   }
-  if (!std::isfinite(t_hold) || !h.why_not.empty()) return StandOnHold{0, {}, 0, h.why_not.empty() ? "" : h.why_not};
+  if (!std::isfinite(t_hold) || !h.why_not.empty()) return StandOnHold{0, 0, {}, 0, h.why_not};
   if (t_hold < 1.0) return {};  // may act now (17(a)(ii))
   const Vec2 end = pb.start + t_hold * v;
   auto refuse = [&](const std::string& why) {
-    return StandOnHold{0, {}, h.target, "stand-on for target " + std::to_string(h.target) + ": " + why};
+    return StandOnHold{0, 0, {}, h.target, "stand-on for target " + std::to_string(h.target) + ": " + why};
   };
   if (norm(end - pb.start) >= norm(pb.goal.p - pb.start)) return {};  // the goal comes first
   if (pb.charted && !pb.charted->contains_by(end, s.constraints.safety_distance))
@@ -215,7 +219,7 @@ Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& 
   if (!(hold.time > 0.0)) return planner.solve(s.request(objective, std::move(warm)), hooks);
   Problem from = s.problem;
   from.start = hold.end;
-  from.heading = s.own.course();
+  from.heading = hold.course;
   for (Target& t : from.targets) t.p = t.p + hold.time * t.v;  // eq. 3 at the hold's end
   const Bounds& b = s.problem.bounds;
   from.bounds = {std::min(b.min_x, hold.end.x), std::min(b.min_y, hold.end.y), std::max(b.max_x, hold.end.x),

@@ -122,16 +122,20 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s);
 
 // Rule 17(a)(i): where one ship is to keep out of the way, the other keeps her course and speed.
 // While a target the own ship stands on for (crossing stand-on, overtaken) is a risk of collision
-// and farther than stand_on_range x d_safety, and no target is pinned with a duty of the own ship
-// (rule 16 comes first), the plan's first leg holds the present course and speed until that range
-// is reached (the earliest over such targets); only from there may the ship act (17(a)(ii), (b)).
+// and farther than stand_on_range x d_safety or farther in time to the CPA than the own ship takes
+// to sail that range, and no target is pinned with a duty of the own ship (rule 16 comes first),
+// the plan's first leg holds the present course and speed until both are reached (the earliest
+// over such targets); only from there may the ship act (17(a)(ii), (b)).
 struct StandOnHold {
   double time = 0;      // [s] how long the course and speed are held (0: no hold)
+  double course = 0;    // [rad] the course held
   Vec2 end;             // [m] where the hold ends
   uint32_t target = 0;  // the target that ends it first
   std::string why_not;  // a stand-on risk exists but is not held for, and why ("" otherwise)
 };
-StandOnHold stand_on_hold(const NodeParams& p, const Setup& s);
+// `held`: the course of the previous plan's hold, kept while it lasts (re-taking the present
+// course at every plan would let the track-keeping's small corrections add up to a turn).
+StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<double> held = std::nullopt);
 
 // Plans `s` with `planner`; with a hold, the path is the hold leg and then the planner's path from
 // its end (targets advanced by eq. 3, times shifted), the reason saying so. When nothing can be
