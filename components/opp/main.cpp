@@ -199,8 +199,11 @@ int main(int argc, char** argv) {
         st->held_course = hold.course;
       }
       if (!hold.why_not.empty()) c->log().debug("no stand-on hold: {}", hold.why_not);
-      const opp::Result r = opp::solve_with_hold(*planner, setup, p.objective, hold,
-                                                 warm ? st->last_path : std::vector<opp::Vec2>{}, hooks);
+      const opp::NodePlan np = opp::plan_node(*planner, p, setup, p.objective, hold,
+                                              warm ? st->last_path : std::vector<opp::Vec2>{}, hooks);
+      const opp::Result& r = np.result;
+      if (np.speed_fraction < 1.0) c->count("plans.reduced_speed");
+      if (np.emergency) c->count("plans.emergency");
       st->policy.planned(now, goal.goal_id, targets, !r.path.empty());
 
       msg::Path out;
@@ -212,7 +215,8 @@ int main(int argc, char** argv) {
       out.reason = r.reason;
       out.colreg_compliant = r.colreg_compliant;
       out.relaxed = r.relaxed;
-      for (const auto& w : r.path) out.waypoints.push_back({w.p.x, w.p.y, w.t, pb.speed});
+      for (std::size_t i = 0; i < r.path.size(); ++i)
+        out.waypoints.push_back({r.path[i].p.x, r.path[i].p.y, r.path[i].t, np.speeds[i]});
       out.cost_total = r.cost.total;
       out.cost_length = r.cost.length;
       out.cost_fixed = r.cost.fixed;

@@ -260,3 +260,60 @@ TEST(OppNode, AStandOnShipHoldsCourseAndSpeedUntilItMayAct) {
   opp::Setup gw = opp::build_setup(p, own, goal, {{5, {10000, 8000}, {0, -4}, {}}}, {}, 0);
   EXPECT_EQ(opp::stand_on_hold(p, gw).time, 0.0);
 }
+
+// Seed 000 §2: the speed is reduced when steering alone is not sufficient. In a canal too narrow
+// to overtake in (walls 1600 m apart, d_safety 500 m), a ship 2 km ahead sails the same way at
+// 1.5 m/s: at 5 m/s there is no path at all, at 25 % (1.25 m/s) the own ship follows it.
+TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
+  opp::NodeParams p = declared({"plan.max_iterations=4000", "plan.safety_distance=500", "plan.colreg_distance=2000"});
+  std::vector<opp::Disc> walls;
+  for (double x = -2000; x <= 14000; x += 200) {
+    walls.push_back({{x, -900}, 100});
+    walls.push_back({{x, 900}, 100});
+  }
+  const opp::DiscObstacles canal(walls);
+  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
+  const opp::GoalSpec goal{{12000, 0}, std::nan(""), 0, 5, 500, true};
+  const std::vector<opp::Target> tg = {{7, {2000, 0}, {1.5, 0}, {}}};
+  const opp::Setup s = opp::build_setup(p, own, goal, tg, {&canal, std::nullopt}, 0);
+  auto planner = opp::make_planner("rrtstar");
+  const opp::NodePlan np = opp::plan_node(*planner, p, s, p.objective, {}, {}, {});
+  ASSERT_EQ(np.result.status, opp::Status::kOk) << np.result.reason;
+  EXPECT_DOUBLE_EQ(np.speed_fraction, 0.25);
+  EXPECT_NE(np.result.reason.find("speed reduced to 25 %"), std::string::npos) << np.result.reason;
+  ASSERT_EQ(np.speeds.size(), np.result.path.size());
+  EXPECT_DOUBLE_EQ(np.speeds.back(), np.speed_fraction * 5.0);
+  // With no lower speed allowed there is no path.
+  const opp::NodePlan fixed = opp::plan_node(*planner, declared({"plan.max_iterations=4000", "plan.safety_distance=500",
+                                                                  "plan.colreg_distance=2000", "plan.speed_steps=0"}),
+                                             s, p.objective, {}, {}, {});
+  EXPECT_NE(fixed.result.status, opp::Status::kOk);
+  EXPECT_TRUE(fixed.emergency);  // no path at the one speed: the emergency leg
+}
+
+// Rule 17(b): no path at all (here: one iteration, no tree) gives the emergency leg, starboard
+// first at reduced speed; to port when a fixed obstacle lies to starboard.
+TEST(OppNode, NoPathAtAllGivesTheEmergencyLegStarboardFirst) {
+  opp::NodeParams p = declared({"plan.max_iterations=1", "plan.warm_start=false"});
+  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
+  const opp::GoalSpec goal{{20000, 0}, std::nan(""), 0, 5, 1000, true};
+  const std::vector<opp::Target> tg = {{2, {6000, 0}, {-5, 0}, {}}};  // head-on
+  const opp::Setup s = opp::build_setup(p, own, goal, tg, {}, 0);
+  auto planner = opp::make_planner("rrtstar");
+  const opp::NodePlan np = opp::plan_node(*planner, p, s, p.objective, {}, {}, {});
+  ASSERT_TRUE(np.emergency) << np.result.reason;
+  EXPECT_EQ(np.result.status, opp::Status::kRelaxed);
+  ASSERT_EQ(np.result.path.size(), 2u);
+  EXPECT_GT(np.result.path[1].p.y, 0.0);  // east of north: starboard
+  EXPECT_NE(np.result.reason.find("emergency (rule 17(b))"), std::string::npos);
+  EXPECT_DOUBLE_EQ(np.speeds[1], 0.25 * 5.0);
+  // Land to starboard: the leg goes to port.
+  const opp::DiscObstacles land({{{600, 900}, 400}});
+  const opp::Setup s2 = opp::build_setup(p, own, goal, tg, {&land, std::nullopt}, 0);
+  const opp::Result e = opp::emergency_path(p, s2, "test");
+  ASSERT_EQ(e.path.size(), 2u);
+  EXPECT_LT(e.path[1].p.y, 0.0);
+  // Switched off: the no-path plan stands.
+  EXPECT_FALSE(opp::plan_node(*planner, declared({"plan.max_iterations=1", "plan.emergency=false"}), s, p.objective, {}, {}, {})
+                   .emergency);
+}

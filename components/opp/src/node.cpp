@@ -63,6 +63,13 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
          "risk of collision: CPA inside this many d_safety (about the NTNU evaluator's r_pref / r_min_cpa, 1.9)");
   ps.add("plan.encounter_tcpa", &p.encounter_tcpa, 0.0, "s", 0.0, 86400.0,
          "a risk of collision within this time pins the encounter (0: the straight-line time to the goal)");
+  ps.add("plan.speed_steps", &p.speed_steps, 3, "-", 0, 20,
+         "no COLREG-compliant path at the planned speed: try this many lower speeds, evenly down to "
+         "plan.min_speed_fraction (seed 000 §2: reduce speed when steering alone is not sufficient); 0: never");
+  ps.add("plan.min_speed_fraction", &p.min_speed_fraction, 0.25, "-", 0.05, 1.0,
+         "the lowest speed tried, and the emergency leg's, as a fraction of the planned speed");
+  ps.add("plan.emergency", &p.emergency, true,
+         "no path at any speed: publish the emergency leg (rule 17(b): starboard first, reduced speed) as RELAXED");
   ps.add("plan.stand_on_range", &p.stand_on_range, 3.5, "-", 0.0, 100.0,
          "rule 17(a): hold course and speed for a target the own ship stands on for until it is this many d_safety "
          "away (the evaluation lets a stand-on ship act from 4 r_min_cpa); 0: no hold");
@@ -239,6 +246,71 @@ Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& 
                            std::to_string(hold.target);
   r.reason = r.reason.empty() ? held : held + "; " + r.reason;
   return r;
+}
+
+NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const ObjectiveParams& objective,
+                   const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks) {
+  auto speeds_of = [&](const Result& r, double u) {
+    std::vector<double> v(r.path.size(), u);
+    if (hold.time > 0.0 && v.size() > 1) v[1] = s.own.speed();  // the hold leg keeps the speed
+    return v;
+  };
+  NodePlan out;
+  out.result = solve_with_hold(planner, s, objective, hold, warm, hooks);
+  out.speeds = speeds_of(out.result, s.problem.speed);
+  const bool want = s.problem.colreg && out.result.status != Status::kInvalidInput;
+  for (int k = 1; want && out.result.status != Status::kOk && k <= p.speed_steps; ++k) {
+    const double f = 1.0 - k * (1.0 - p.min_speed_fraction) / p.speed_steps;
+    Setup slow = s;
+    slow.problem.speed = f * s.problem.speed;
+    Result r = solve_with_hold(planner, slow, objective, hold, {}, hooks);
+    const bool better = r.status == Status::kOk || (out.result.status == Status::kNoPath && r.status == Status::kRelaxed);
+    if (!better) continue;
+    r.reason = "speed reduced to " + fmt(100.0 * f) + " % (seed 000 §2: steering alone not sufficient)" +
+               (r.reason.empty() ? "" : "; " + r.reason);
+    out.result = std::move(r);
+    out.speeds = speeds_of(out.result, slow.problem.speed);
+    out.speed_fraction = f;
+  }
+  if (out.result.status == Status::kNoPath && p.emergency) {
+    Result e = emergency_path(p, s, out.result.reason);
+    if (!e.path.empty()) {
+      out.result = std::move(e);
+      out.speeds.assign(out.result.path.size(), p.min_speed_fraction * s.problem.speed);
+      out.speed_fraction = p.min_speed_fraction;
+      out.emergency = true;
+    }
+  }
+  return out;
+}
+
+Result emergency_path(const NodeParams& p, const Setup& s, const std::string& why) {
+  const Problem& pb = s.problem;
+  const ValidityChecker vc(pb, s.constraints);
+  const double u = p.min_speed_fraction * pb.speed, len = std::max(s.constraints.safety_distance, 10.0 * u);
+  const double course = s.own.speed() > 0.5 ? s.own.course() : pb.heading;
+  const double turn = std::min(s.constraints.max_turn, geo::kPi / 2);
+  Result best;
+  double best_d = -1.0;
+  for (const double a : {turn, turn / 2, 0.0, -turn / 2, -turn}) {
+    const Vec2 end = pb.start + len * Vec2{std::cos(course + a), std::sin(course + a)};
+    if (!vc.fixed_clear(pb.start, end, vc.fixed_distance(true))) continue;
+    double d = std::numeric_limits<double>::infinity();
+    const Vec2 vel = (u / len) * (end - pb.start);
+    for (const Target& t : pb.targets)
+      d = std::min(d, std::sqrt(geom::closest_approach(pb.start - t.p, vel - t.v, len / u).dist2));
+    if (d > 1.1 * best_d) {
+      best_d = d;
+      best.path = {{pb.start, 0.0}, {end, len / u}};
+      best.reason = "emergency (rule 17(b)): no path at any speed (" + why + "); " +
+                    (a > 0 ? "turning to starboard " : (a < 0 ? "turning to port " : "holding course ")) + fmt(geo::rad2deg(std::fabs(a))) +
+                    " deg at " + fmt(100.0 * p.min_speed_fraction) + " % speed";
+    }
+  }
+  best.status = best.path.empty() ? Status::kNoPath : Status::kRelaxed;
+  best.relaxed = !best.path.empty();
+  if (best.path.empty()) best.reason = why + "; no emergency leg clear of fixed obstacles either";
+  return best;
 }
 
 std::vector<EncounterReport> report_encounters(const NodeParams& p, const Setup& s, std::vector<std::string>* rejected) {

@@ -48,6 +48,9 @@ struct NodeParams {
   double encounter_cpa = 2.0;    // [-] x d_safety: a CPA inside it is a risk of collision
   double encounter_tcpa = 0;     // [s] risk of collision within this TCPA pins an encounter (0: the
                                  //     plan's horizon, the straight-line time to the goal)
+  int speed_steps = 3;           // [-] lower speeds tried when no compliant path exists (0: none)
+  double min_speed_fraction = 0.25;  // [-] the lowest of them, of the planned speed
+  bool emergency = true;         // no path at any speed: the emergency leg (emergency_path)
   double stand_on_range = 3.5;   // [-] x d_safety: a stand-on ship keeps course and speed until a
                                  //     target it stands on for is this close (rule 17(a)); 0: no hold
   // Rule 13-15 sectors of the pinned and reported encounters (common colreg, not the planner's eq. 16 angle).
@@ -142,6 +145,29 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<dou
 // planned from the hold's end the ship acts now: the plain plan, its reason naming the hold given up.
 Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& objective,
                        const StandOnHold& hold, std::vector<Vec2> warm, const Hooks& hooks);
+
+// Seed 000 §2: "the speed is reduced if the steering action alone is not sufficient". When the
+// plan at the planned speed is not COLREG-compliant (relaxed, or no path), the same problem is
+// planned at speed_steps lower speeds evenly down to min_speed_fraction of it and the fastest
+// compliant plan is taken (the time lost is its cost). With none compliant, the planned speed's
+// plan stands, unless it had no path at all and a lower speed has one. With no path at any speed
+// and `emergency`, emergency_path.
+struct NodePlan {
+  Result result;
+  std::vector<double> speeds;   // [m/s] per waypoint: the speed of the leg that ends there
+  double speed_fraction = 1.0;  // [-] of the planned speed, after any stand-on hold
+  bool emergency = false;
+};
+NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const ObjectiveParams& objective,
+                   const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks);
+
+// Rule 17(b) / 2(b), when nothing can be planned: one leg of d_safety at min_speed_fraction of the
+// planned speed, on the course among own course + {max_turn, max_turn/2, 0, -max_turn/2,
+// -max_turn} (starboard first) that keeps clear of fixed obstacles (as far as the start is) and
+// passes farthest from the targets (eq. 3), a starboard one kept unless a later one passes 10 %
+// farther. Status kRelaxed, not compliant, the reason starting "emergency". Empty path when every
+// course meets a fixed obstacle.
+Result emergency_path(const NodeParams& p, const Setup& s, const std::string& why);
 
 // One target as the planner reports it (plan/encounters): rule 13-15 assessment and bearing.
 struct EncounterReport {
