@@ -308,7 +308,15 @@ TEST(ColregVerdicts, StandOnIsExcusedWhileGivingWayToAnother) {
   EXPECT_EQ(e[1].situation, EncounterType::kCrossingStandOn);
   EXPECT_TRUE(e[1].conflicting_obligation);
   EXPECT_EQ(e[1].held_course_and_speed, Verdict::kNotApplicable);
+  // What is judged instead: passed at a safe distance (8(d)), not to port (17(c)).
+  EXPECT_EQ(e[1].kept_clear, Verdict::kPass);
+  EXPECT_EQ(e[1].not_turned_to_port, Verdict::kPass);
   EXPECT_TRUE(e[1].compliant);
+  // The same conflict resolved by a port turn fails 17(c) for the stand-on target.
+  auto port = sail(0, 10, 0, 0, 0, 7, {{40, deg2rad(-60), 7}}, t);
+  const auto ep = sr::evaluate_encounters(sr::synthetic::run_of(t, port, {gw, so}), {});
+  EXPECT_EQ(ep[1].not_turned_to_port, Verdict::kFail);
+  EXPECT_FALSE(ep[1].compliant);
   // Alone, the same early turn fails the stand-on verdict.
   const auto alone = one(sr::synthetic::run_of(t, own, {so}));
   EXPECT_FALSE(alone.conflicting_obligation);

@@ -504,6 +504,8 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
       break;
     case EncounterType::kCrossingStandOn:
     case EncounterType::kOvertaken: {
+      if (e.situation == EncounterType::kCrossingStandOn)  // rule 17(c), whenever the ship acts
+        e.not_turned_to_port = verdict(!(e.manoeuvre_side == Side::kPort && e.max_port_change >= p.theta_sm_lim));
       // Rule 17(a)(i): keep course and speed until the stand-on ship may act (stage 3): the
       // target within r_colregs_3_max and the CPA nearer in time than the own ship takes to sail
       // that range. A ship overtaking slowly from close astern is not yet a reason to act.
@@ -531,7 +533,7 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
 void set_compliance(EncounterResult& e) {
   e.compliant = true;
   for (Verdict v : {e.turned_starboard, e.passed_port_to_port, e.not_crossed_ahead, e.kept_clear,
-                    e.held_course_and_speed, e.readily_apparent})
+                    e.held_course_and_speed, e.not_turned_to_port, e.readily_apparent})
     if (v == Verdict::kFail) e.compliant = false;
 }
 
@@ -546,6 +548,7 @@ std::string describe_failures(const EncounterResult& e) {
   add("crossed ahead;", e.not_crossed_ahead);
   add("did not keep clear;", e.kept_clear);
   add("did not hold course and speed;", e.held_course_and_speed);
+  add("turned to port for a ship on its port side (17(c));", e.not_turned_to_port);
   add("no readily apparent action (rule 8(b));", e.readily_apparent);
   std::string r = s.str();
   if (!r.empty() && r.back() == ';') r.pop_back();
@@ -564,9 +567,7 @@ std::string unjudged(const EncounterResult& e, const EvaluationParams& p) {
       << p.r_pref << " m)";
   } else if ((e.situation == colreg::EncounterType::kCrossingStandOn || e.situation == colreg::EncounterType::kOvertaken) &&
              e.held_course_and_speed == Verdict::kNotApplicable) {
-    if (e.conflicting_obligation)
-      s << "stand-on while giving way to another ship (conflicting obligations)";
-    else
+    if (!e.conflicting_obligation)
       s << "stand-on from inside stage 3 (start range " << e.range_start << " m < r_colregs_3_max = " << p.r_colregs_3_max
         << " m, TCPA " << e.tcpa_start << " s): no course and speed to hold";
   }
@@ -590,6 +591,7 @@ std::vector<EncounterResult> evaluate_encounters(const RunRecord& run, const Eva
       if (&gw != &so && gives_way && gw.t_start <= so.t_hold_end && gw.t_cpa >= so.t_start) {
         so.conflicting_obligation = true;
         so.held_course_and_speed = Verdict::kNotApplicable;
+        so.kept_clear = verdict(so.cpa >= p.r_min_cpa);  // rule 8(d): still passed at a safe distance
       }
     }
   }

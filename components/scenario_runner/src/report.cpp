@@ -97,6 +97,7 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
                             {"not_crossed_ahead", to_string(e.not_crossed_ahead)},
                             {"kept_clear", to_string(e.kept_clear)},
                             {"held_course_and_speed", to_string(e.held_course_and_speed)},
+                            {"not_turned_to_port", to_string(e.not_turned_to_port)},
                             {"readily_apparent", to_string(e.readily_apparent)}}},  // rule 8(b)
                           {"t_hold_end_s", number(e.t_hold_end)},
                           {"conflicting_obligation", e.conflicting_obligation},

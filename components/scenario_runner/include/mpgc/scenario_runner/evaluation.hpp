@@ -268,11 +268,17 @@ struct EncounterResult {
   Verdict not_crossed_ahead = Verdict::kNotApplicable;    // crossing give-way (rule 15)
   Verdict kept_clear = Verdict::kNotApplicable;           // overtaking: cpa >= r_min_cpa (rule 13)
   Verdict held_course_and_speed = Verdict::kNotApplicable;  // stand-on until r_colregs_3_max (17)
+  // Crossing stand-on (rule 17(c)): a power-driven ship that acts shall not alter course to port
+  // for a ship on her own port side: fails when the manoeuvre made for it was to port (>=
+  // theta_sm_lim).
+  Verdict not_turned_to_port = Verdict::kNotApplicable;
   // Stand-on only: end of the hold window (range below r_colregs_3_max, or the encounter's end).
   double t_hold_end = kNaN;  // [s]
   // Stand-on only: during the hold window the own ship had to give way to another target (its
   // give-way or head-on encounter overlapped), so it could not stand on; held_course_and_speed is
-  // then kNotApplicable (multi-ship conflict; the give-way encounter is judged instead).
+  // then kNotApplicable (multi-ship conflict; the give-way encounter is judged instead) and the
+  // action taken for the other must pass this one at a safe distance (rule 8(d): kept_clear, cpa
+  // >= r_min_cpa) and, crossing, not to port (17(c)).
   bool conflicting_obligation = false;
   bool compliant = true;  // every applicable verdict passed
 };
