@@ -10,7 +10,7 @@ namespace mpgc::opp {
 
 namespace {
 
-// Stand-on and overtaken situations are not pinned: the per-leg model (eq. 18) keeps course.
+// Overtaken situations are not pinned (no side is prescribed); a crossing stand-on is, for 17(c).
 Obligation obligation_of(colreg::EncounterType t) { return pinnable(t) ? t : Obligation::kNone; }
 
 }  // namespace

@@ -166,7 +166,7 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<dou
   const Vec2 v = s.own.speed() * Vec2{std::cos(h.course), std::sin(h.course)};
   double t_hold = std::numeric_limits<double>::infinity();
   for (const Target& t : pb.targets) {
-    if (t.pinned.obligation != Obligation::kNone) {
+    if (is_duty(t.pinned.obligation)) {
       h.why_not = "giving way to target " + std::to_string(t.id) + " (rule 16 first)";
       continue;
     }

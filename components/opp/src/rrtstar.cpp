@@ -526,7 +526,7 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
   auto tree = std::make_unique<Tree>(checker, objective, params, res.stats, hooks, params.seed);
   tree->colreg = problem.colreg ? ColregLevel::kFull : ColregLevel::kNone;
   bool any_pinned = false;
-  for (const Target& t : problem.targets) any_pinned = any_pinned || t.pinned.obligation != Obligation::kNone;
+  for (const Target& t : problem.targets) any_pinned = any_pinned || is_duty(t.pinned.obligation);
   if (!warm.empty()) res.stats.warm_started = tree->seed_chain(warm_tail(warm, problem.start));
   // Best over restarted trees (the incumbent survives a restart, so the cost stays monotone).
   double best_cost = tree->best_cost();

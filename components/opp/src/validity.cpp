@@ -47,7 +47,9 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
     const double lim = escape ? std::min(ds * ds, norm2(r0) * (1.0 - 1e-9)) : ds * ds;
     if (geom::closest_approach(r0, vel - tg.v, T).dist2 < lim) return kTarget;  // eq. 3-4
     const bool pinned = tg.pinned.obligation != Obligation::kNone;
-    if (level == ColregLevel::kNone || (level == ColregLevel::kPinned && !pinned)) continue;
+    // The first relaxation keeps the own ship's duties; a stand-on target is then unconstrained
+    // (rule 17(b): it may act as best aids to avoid collision).
+    if (level == ColregLevel::kNone || (level == ColregLevel::kPinned && !is_duty(tg.pinned.obligation))) continue;
     // §5 at the leg's start and every colreg_spacing along it (a long leg must not jump over the
     // zone). A pinned obligation holds from the moment the risk of collision was found, at any
     // range: crossing ahead of a give-way target just outside d_COLREG is still crossing ahead.

@@ -48,11 +48,15 @@ ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p
 // Pinned obligations are colreg::EncounterType values with a duty for the own ship: kNone (not
 // pinned: the per-leg model of eq. 11-19 applies), kHeadOn (rule 14: alter to starboard, pass port
 // to port), kCrossingGiveWay (rules 15-16: the target on the starboard side: keep out of its way,
-// astern) and kOvertaking (rule 13: keep out of the way of the overtaken vessel). Stand-on
-// situations are not pinned (the per-leg model keeps course, eq. 18).
+// astern) and kOvertaking (rule 13: keep out of the way of the overtaken vessel) — the own ship's
+// duties — and kCrossingStandOn (rule 17(c): when the stand-on ship acts, not to port for a ship
+// on her own port side; its course and speed are held by the node's stand-on hold). Overtaken is
+// not pinned.
 using Obligation = colreg::EncounterType;
-// True for the four values above.
+// True for the five values above.
 bool pinnable(Obligation o);
+// True for the own ship's duties: head-on, crossing give-way, overtaking.
+bool is_duty(Obligation o);
 
 struct PinnedEncounter {
   Obligation obligation = Obligation::kNone;
@@ -74,7 +78,8 @@ inline bool across_astern(const PinnedEncounter& e, Vec2 w, Vec2 r) {
 
 // One leg (own at x0 with velocity v, target at y0 with velocity w, same time) against a pinned
 // obligation. A leg on which the range opens is clear. Otherwise head-on: the target on the port
-// side (eq. 19) and no alteration to port of course0 beyond port_tolerance; give-way: no
+// side (eq. 19) and no alteration to port of course0 beyond port_tolerance; crossing stand-on: no
+// alteration to port of course0 beyond port_tolerance (rule 17(c)); give-way: no
 // alteration to port, and where the routes meet ahead of both (eq. 13-14) the target reaches x_c
 // first (eq. 15), until the own ship is across the target's track astern of it; overtaking: the
 // target first at x_c (§5.3).
