@@ -352,3 +352,23 @@ TEST(ColregVerdicts, ATurnMadeWhenTheTargetWasNoRiskIsNotJudgedForIt) {
   EXPECT_TRUE(std::isnan(e.t_manoeuvre));
   EXPECT_EQ(e.manoeuvre_side, Side::kNone);
 }
+
+// Two ships crossing from port, both stand-on: the nearer reaches stage 3 first and the own ship
+// acts for it; it cannot hold course for the farther one any longer, whose hold ends there too.
+TEST(ColregVerdicts, ActingForOneStandOnTargetEndsTheHoldForAnother) {
+  const auto t = sr::synthetic::times(700, 1.0);
+  // Near: from (2000, -2000) heading east (stage 3 at 245 s). Far: from (2300, -2300), also on a
+  // collision course (encounter from 76 s, stage 3 at 288 s). The own ship turns at 250 s.
+  auto near = sail(1, 10, 2000, -2000, kPi / 2, 7, {}, t);
+  auto far = sail(2, 10, 2300, -2300, kPi / 2, 7, {}, t);
+  auto own = sail(0, 10, 0, 0, 0, 7, {{250, deg2rad(40), 7}}, t);
+  const auto e = sr::evaluate_encounters(sr::synthetic::run_of(t, own, {near, far}), {});
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_EQ(e[0].situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(e[0].held_course_and_speed, Verdict::kPass);
+  ASSERT_EQ(e[1].situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(e[1].held_course_and_speed, Verdict::kPass);  // alone it would fail:
+  EXPECT_LE(e[1].t_hold_end, e[0].t_hold_end + 1.0);
+  const auto alone = one(sr::synthetic::run_of(t, own, {far}));
+  EXPECT_EQ(alone.held_course_and_speed, Verdict::kFail);
+}

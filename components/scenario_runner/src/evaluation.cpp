@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -395,8 +396,10 @@ void attribute(EncounterResult& e, const RunRecord& run, const ShipTrack& tgt, s
   }
 }
 
+// `act_from`: the time from which the own ship may act anyway because another stand-on encounter
+// reached its stage 3 (evaluate_encounters): the hold ends there at the latest.
 EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const std::vector<Episode>& episodes,
-                             const EvaluationParams& p) {
+                             const EvaluationParams& p, double act_from = std::numeric_limits<double>::infinity()) {
   const auto& t = run.t;
   const auto& own = run.own.states;
   const auto& tg = tgt.states;
@@ -517,7 +520,11 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
       if (may_act(start)) break;  // may act from the start: nothing to hold
       bool held = true;
       std::size_t i = start;
-      for (; i <= end && !may_act(i); ++i) {
+      if (!(t[start] < act_from)) {  // acting for another stand-on target from the start
+        e.conflicting_obligation = true;
+        break;
+      }
+      for (; i <= end && !may_act(i) && t[i] < act_from; ++i) {
         if (std::fabs(geo::angle_diff(course(own[i]), chi0)) > p.delta_course_md) held = false;
         if (u0 > 0.1 && std::fabs(own[i].sog - u0) / u0 > p.delta_speed_md) held = false;
       }
@@ -583,8 +590,20 @@ std::vector<EncounterResult> evaluate_encounters(const RunRecord& run, const Eva
   out.reserve(run.targets.size());
   const std::vector<Episode> episodes = course_episodes(run, p);
   for (const auto& tgt : run.targets) out.push_back(evaluate_one(run, tgt, episodes, p));
+  // A stand-on ship that may act for one stand-on target (its stage 3 reached) cannot go on holding
+  // course for another whose encounter overlaps: that one's hold ends there too.
+  auto stands_on = [](const EncounterResult& e) { return e.role == colreg::Role::kStandOn && std::isfinite(e.t_hold_end); };
+  std::vector<double> act_from(out.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (std::size_t j = 0; j < out.size(); ++j)
+      if (i != j && stands_on(out[i]) && stands_on(out[j]) && out[j].t_hold_end < out[i].t_hold_end &&
+          out[j].t_cpa >= out[i].t_start)
+        act_from[i] = std::min(act_from[i], out[j].t_hold_end);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (std::isfinite(act_from[i])) out[i] = evaluate_one(run, run.targets[i], episodes, p, act_from[i]);
   // A ship that must give way to one target cannot stand on for another at the same time.
   for (auto& so : out) {
+    if (so.conflicting_obligation) so.kept_clear = verdict(so.cpa >= p.r_min_cpa);  // acting for another stand-on
     if (so.held_course_and_speed == Verdict::kNotApplicable) continue;
     for (const auto& gw : out) {
       const bool gives_way = gw.role == colreg::Role::kGiveWay || gw.role == colreg::Role::kBothGiveWay;
