@@ -148,14 +148,17 @@ TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
 }
 
 // Rule 17(c): a crossing stand-on pinned: when the own ship acts, not to port for a ship on its
-// port side; to starboard is free (no readily-apparent band: the stand-on has no duty to alter).
+// port side; to starboard by a readily apparent amount.
 TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   const opp::Vec2 w{0, 6}, y{3000, -2500};  // from the port bow, heading east
   const auto so = pinned(opp::Obligation::kCrossingStandOn);
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-30), y, w, so, kP).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(40), y, w, so, kP).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, kNorth, y, w, so, kP).compliant);
-  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
+  // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(35), y, w, so, kP));
   EXPECT_FALSE(opp::is_duty(opp::Obligation::kCrossingStandOn));
+  EXPECT_FALSE(opp::is_duty(opp::Obligation::kOvertaken));
   EXPECT_TRUE(opp::is_duty(opp::Obligation::kHeadOn));
 }

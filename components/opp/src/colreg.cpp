@@ -22,7 +22,7 @@ double arrival_difference(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, double c, const Colr
 
 bool pinnable(Obligation o) {
   return o == Obligation::kNone || o == Obligation::kHeadOn || o == Obligation::kCrossingGiveWay ||
-         o == Obligation::kOvertaking || o == Obligation::kCrossingStandOn;
+         o == Obligation::kOvertaking || o == Obligation::kCrossingStandOn || o == Obligation::kOvertaken;
 }
 
 bool is_duty(Obligation o) {
@@ -46,19 +46,21 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
       out.compliant = !port_turn && !(dt <= 0.0);
       break;
     }
-    case Obligation::kOvertaking: out.compliant = !(dt <= 0.0); break;
+    case Obligation::kOvertaking:
+    case Obligation::kOvertaken: out.compliant = !(dt <= 0.0); break;  // §5.3: not across its bow
     case Obligation::kCrossingStandOn: out.compliant = !port_turn; break;  // rule 17(c)
-    default: break;  // kNone handled above; overtaken is never pinned
+    default: break;  // kNone handled above
   }
   return out;
 }
 
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
-  if (!(p.apparent_turn > p.port_tolerance) || !is_duty(e.obligation)) return true;
+  if (!(p.apparent_turn > p.port_tolerance) || e.obligation == Obligation::kNone) return true;
   if (norm(v) < p.min_speed || dot(y0 - x0, v - w) <= 0.0) return true;  // not closing: no action owed
   if (e.obligation == Obligation::kCrossingGiveWay && across_astern(e, w, x0 - y0)) return true;
   const double turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi);
-  const double a = e.obligation == Obligation::kOvertaking ? std::fabs(turn) : turn;
+  const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
+  const double a = either ? std::fabs(turn) : turn;
   return !(a > p.port_tolerance && a < p.apparent_turn);
 }
 

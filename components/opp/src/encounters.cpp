@@ -10,7 +10,7 @@ namespace mpgc::opp {
 
 namespace {
 
-// Overtaken situations are not pinned (no side is prescribed); a crossing stand-on is, for 17(c).
+// Every situation with a rule is pinned: the duties, and the stand-on ones for 17(c) and rule 8(b) when acting.
 Obligation obligation_of(colreg::EncounterType t) { return pinnable(t) ? t : Obligation::kNone; }
 
 }  // namespace

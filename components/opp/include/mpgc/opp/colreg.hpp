@@ -17,10 +17,10 @@ struct ColregParams {
   double min_speed = 0.05;                        // [m/s] below it a vessel has no route to cross
   double port_tolerance = 0.08726646259971647;    // [rad] a pinned head-on or give-way leg may point
                                                   // this far to port of the course it was pinned at (5 deg)
-  // Rule 8(b): an alteration for a pinned give-way, head-on or overtaking obligation must be
-  // "large enough to be readily apparent" (a succession of small ones avoided). While the range
-  // closes, a leg holds the course it was pinned at (within port_tolerance) or is altered by at
-  // least this much (colreg_check_apparent). 0 disables the band.
+  // Rule 8(b): any alteration to avoid collision must be "large enough to be readily apparent" (a
+  // succession of small ones avoided), for a duty and for a stand-on ship that acts. While the
+  // range to a pinned target closes, a leg holds the course it was pinned at (within
+  // port_tolerance) or is altered by at least this much (colreg_check_apparent). 0: no band.
   double apparent_turn = 0.5235987755982988;      // [rad] 30 deg, the NTNU evaluator's delta_course_app
 };
 
@@ -49,11 +49,11 @@ ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p
 // pinned: the per-leg model of eq. 11-19 applies), kHeadOn (rule 14: alter to starboard, pass port
 // to port), kCrossingGiveWay (rules 15-16: the target on the starboard side: keep out of its way,
 // astern) and kOvertaking (rule 13: keep out of the way of the overtaken vessel) — the own ship's
-// duties — and kCrossingStandOn (rule 17(c): when the stand-on ship acts, not to port for a ship
-// on her own port side; its course and speed are held by the node's stand-on hold). Overtaken is
-// not pinned.
+// duties — and the stand-on situations, whose course and speed the node's stand-on hold keeps:
+// kCrossingStandOn (rule 17(c): when the stand-on ship acts, not to port for a ship on her own
+// port side) and kOvertaken (not across the overtaking ship's bow, §5.3).
 using Obligation = colreg::EncounterType;
-// True for the five values above.
+// True for the six values above.
 bool pinnable(Obligation o);
 // True for the own ship's duties: head-on, crossing give-way, overtaking.
 bool is_duty(Obligation o);
@@ -88,8 +88,8 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
 // Rule 8(b) for a leg against a pinned obligation (the full COLREG level only: the first
 // relaxation drops it, "if the circumstances of the case admit"): false when the range closes
 // along the leg and its course is altered from course0 by more than port_tolerance but less than
-// apparent_turn (to starboard; to either side when overtaking). A give-way leg already across the
-// target's track astern is free.
+// apparent_turn (to starboard; to either side when overtaking or overtaken). A give-way leg
+// already across the target's track astern is free.
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
 
 }  // namespace mpgc::opp
