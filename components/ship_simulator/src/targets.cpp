@@ -50,6 +50,13 @@ void TargetConfig::validate() const {
   if (!(length > 0.0) || length > 500.0) throw std::invalid_argument(id + "length must be in (0, 500] m");
   if (!(beam > 0.0) || beam > 100.0) throw std::invalid_argument(id + "beam must be in (0, 100] m");
   if (nav_status > 15) throw std::invalid_argument(id + "nav_status must be 0..15");
+  if (behaviour == TargetBehaviour::kColreg) {
+    try {
+      helmsman.validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(id + e.what());
+    }
+  }
 }
 
 TargetShip::TargetShip(TargetConfig cfg) : cfg_(std::move(cfg)) {
@@ -58,6 +65,7 @@ TargetShip::TargetShip(TargetConfig cfg) : cfg_(std::move(cfg)) {
   s_.y = cfg_.y0;
   s_.course = geo::wrap_pi(cfg_.course0);
   s_.speed = cfg_.speed0;
+  if (cfg_.behaviour == TargetBehaviour::kColreg) helm_.emplace(cfg_.helmsman);
 }
 
 void TargetShip::ordered(double t, double* course, double* speed) {
@@ -92,6 +100,21 @@ void TargetShip::step(double t, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt) || !std::isfinite(t)) throw std::invalid_argument("TargetShip::step: bad t or dt");
   double course = 0.0, speed = 0.0;
   ordered(t, &course, &speed);
+  move(course, speed, dt);
+}
+
+void TargetShip::step(double t, double dt, const std::vector<SeenShip>& others) {
+  if (!helm_) return step(t, dt);
+  if (!(dt > 0.0) || !std::isfinite(dt) || !std::isfinite(t)) throw std::invalid_argument("TargetShip::step: bad t or dt");
+  double course = 0.0, speed = 0.0;
+  ordered(t, &course, &speed);
+  // Targets do not drift: heading = course over ground.
+  const auto me = colreg::ShipKinematics::from_course(s_.x, s_.y, s_.course, s_.speed, s_.course);
+  const HelmOrder o = helm_->decide(me, course, speed, others);
+  move(o.course, o.speed, dt);
+}
+
+void TargetShip::move(double course, double speed, double dt) {
   const double dpsi = std::clamp(geo::angle_diff(course, s_.course), -cfg_.max_turn_rate * dt, cfg_.max_turn_rate * dt);
   const double dv = std::clamp(speed - s_.speed, -cfg_.max_accel * dt, cfg_.max_accel * dt);
   // Move along the mean course and speed of the step (second order in dt).

@@ -149,7 +149,7 @@ WorldConfig WorldConfig::from_yaml(const std::string& text, const std::string& o
   for (const Map& t : top.list("targets", 1000)) {
     t.allow({"mmsi", "name", "x_m", "y_m", "lat_deg", "lon_deg", "course_deg", "speed_kn", "length_m", "beam_m",
              "nav_status", "max_turn_rate_deg_s", "max_accel_mps2", "waypoint_radius_m", "legs", "waypoints",
-             "manoeuvres"});
+             "manoeuvres", "behaviour", "helmsman"});
     TargetConfig tc;
     tc.mmsi = static_cast<uint32_t>(t.req("mmsi", 100000000.0, 999999999.0));
     if (!mmsis.insert(tc.mmsi).second) t.fail(t.name("mmsi"), "duplicates another target's MMSI");
@@ -165,6 +165,33 @@ WorldConfig WorldConfig::from_yaml(const std::string& text, const std::string& o
     tc.max_turn_rate = geo::deg2rad(t.num("max_turn_rate_deg_s", 0.5, 0.01, 10.0));
     tc.max_accel = t.num("max_accel_mps2", 0.05, 0.001, 5.0);
     tc.waypoint_radius = t.num("waypoint_radius_m", 200.0, 1.0, 10000.0);
+    // behaviour: route (default, the scripted mover) | colreg (a rule-following helmsman).
+    const std::string behaviour = t.str("behaviour", "route");
+    if (behaviour == "colreg") tc.behaviour = TargetBehaviour::kColreg;
+    else if (behaviour != "route") t.fail(t.name("behaviour"), "= '" + behaviour + "' must be route or colreg");
+    if (t.has("helmsman")) {
+      if (tc.behaviour != TargetBehaviour::kColreg) t.fail(t.name("helmsman"), "is for behaviour: colreg only");
+      // Wide bounds here (finite numbers); HelmsmanParams::validate() holds the real limits.
+      const Map h = t.sub("helmsman");
+      h.allow({"d_colreg_m", "cpa_risk_m", "tcpa_max_s", "alteration_deg", "max_alteration_deg",
+               "alteration_step_deg", "act_alone", "act_alone_range_m", "act_alone_cpa_m"});
+      HelmsmanParams& hp = tc.helmsman;
+      hp.d_colreg = h.num("d_colreg_m", hp.d_colreg, 0.0, kMaxCoord);
+      hp.cpa_risk = h.num("cpa_risk_m", hp.cpa_risk, 0.0, kMaxCoord);
+      hp.tcpa_max = h.num("tcpa_max_s", hp.tcpa_max, 0.0, 1e7);
+      hp.alteration = geo::deg2rad(h.num("alteration_deg", geo::rad2deg(hp.alteration), 0.0, 360.0));
+      hp.max_alteration = geo::deg2rad(h.num("max_alteration_deg", geo::rad2deg(hp.max_alteration), 0.0, 360.0));
+      hp.alteration_step = geo::deg2rad(h.num("alteration_step_deg", geo::rad2deg(hp.alteration_step), 0.0, 360.0));
+      if (h.has("act_alone")) {
+        try {
+          hp.act_alone = h.node["act_alone"].as<bool>();
+        } catch (const YAML::Exception&) {
+          h.fail(h.name("act_alone"), "is not true or false");
+        }
+      }
+      hp.act_alone_range = h.num("act_alone_range_m", hp.act_alone_range, 0.0, kMaxCoord);
+      hp.act_alone_cpa = h.num("act_alone_cpa_m", hp.act_alone_cpa, 0.0, kMaxCoord);
+    }
     for (const Map& l : t.list("legs", 10000)) {
       l.allow({"course_deg", "speed_kn", "duration_s"});
       tc.legs.push_back({geo::wrap_pi(geo::deg2rad(l.req("course_deg", -360.0, 360.0))),
@@ -251,6 +278,7 @@ World::World(WorldConfig cfg, int64_t step_ns)
   own_->set_state(s);
   for (std::size_t i = 0; i < cfg_.targets.size(); ++i) {
     targets_.emplace_back(cfg_.targets[i]);
+    any_colreg_ = any_colreg_ || cfg_.targets[i].behaviour == TargetBehaviour::kColreg;
     ais_.emplace_back(cfg_.targets[i].mmsi, cfg_.targets[i].nav_status, cfg_.ais, i + 1);
   }
 }
@@ -258,8 +286,28 @@ World::World(WorldConfig cfg, int64_t step_ns)
 void World::step(const ShipCommand& cmd) {
   const double dt = static_cast<double>(step_ns_) * 1e-9;
   const double t = static_cast<double>(time_ns()) * 1e-9;
+  // What the rule-following targets see: every ship at t, before anyone moves (so the order of
+  // the targets does not matter). Built only when some target has a helmsman.
+  std::vector<SeenShip> seen;
+  if (any_colreg_) {
+    const Kinematics o = own_kinematics();
+    seen.push_back({0, colreg::ShipKinematics::from_course(o.x, o.y, o.cog, o.sog, o.heading)});
+    for (const auto& tg : targets_)
+      seen.push_back({tg.config().mmsi, colreg::ShipKinematics::from_course(tg.state().x, tg.state().y, tg.state().course,
+                                                                            tg.state().speed, tg.state().course)});
+  }
   own_->step(dt, cmd);
-  for (auto& tg : targets_) tg.step(t, dt);
+  std::vector<SeenShip> others;
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    if (targets_[i].config().behaviour != TargetBehaviour::kColreg) {
+      targets_[i].step(t, dt);
+      continue;
+    }
+    others.clear();
+    for (std::size_t j = 0; j < seen.size(); ++j)
+      if (j != i + 1) others.push_back(seen[j]);  // seen[0] is the own ship
+    targets_[i].step(t, dt, others);
+  }
   ++step_;
 }
 

@@ -1,10 +1,14 @@
 // Target ships: kinematic movers that follow a route (course/speed legs or waypoints) and
-// scripted "unexpected" manoeuvres at given times (seed 000 §7).
+// scripted "unexpected" manoeuvres at given times (seed 000 §7); optionally with a rule-following
+// helmsman (behaviour colreg, helmsman.hpp) that overrides the route while it gives way or stands on.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "mpgc/ship_simulator/helmsman.hpp"
 
 namespace mpgc::ship_simulator {
 
@@ -29,6 +33,11 @@ struct ScriptedManoeuvre {
   double duration = 0.0;  // [s] 0 = permanent
 };
 
+enum class TargetBehaviour {
+  kRoute,   // follows its route and scripted manoeuvres, whatever the other ships do
+  kColreg,  // the same, but a Helmsman gives way or stands on by COLREG (helmsman.hpp)
+};
+
 struct TargetConfig {
   uint32_t mmsi = 0;                 // [-] 9 digits
   std::string name;
@@ -43,6 +52,8 @@ struct TargetConfig {
   double waypoint_radius = 0.0;      // [m] acceptance radius of a waypoint
   double length = 0.0, beam = 0.0;   // [m]
   uint8_t nav_status = 0;            // [-] ITU-R M.1371 navigational status (1 anchored, 5 moored)
+  TargetBehaviour behaviour = TargetBehaviour::kRoute;
+  HelmsmanParams helmsman;           // used with behaviour kColreg only
   void validate() const;             // throws std::invalid_argument naming the field
 };
 
@@ -59,6 +70,11 @@ class TargetShip {
   // Advances from time t to t + dt: orders from the route/manoeuvres at t, then turns and
   // accelerates within the limits (explicit, exact for piecewise-constant rate).
   void step(double t, double dt);
+  // The same with the other ships it sees at t (the own ship and the other targets): a colreg
+  // target's helmsman may override the route's orders; a route target ignores `others`.
+  void step(double t, double dt, const std::vector<SeenShip>& others);
+  // The helmsman's mode (kRoute for a route target).
+  HelmMode helm_mode() const { return helm_ ? helm_->mode() : HelmMode::kRoute; }
   const TargetState& state() const { return s_; }
   const TargetConfig& config() const { return cfg_; }
   // Course and speed the target is ordered to hold at time t (for tests).
@@ -68,6 +84,8 @@ class TargetShip {
   TargetConfig cfg_;
   TargetState s_;
   std::size_t wp_ = 0;  // next waypoint
+  std::optional<Helmsman> helm_;  // behaviour kColreg only
+  void move(double course, double speed, double dt);
 };
 
 }  // namespace mpgc::ship_simulator

@@ -70,6 +70,7 @@ class World {
   ShipModel& own() { return *own_; }
   TruthShip own_truth() const;
   std::vector<TruthShip> target_truth() const;
+  const std::vector<TargetShip>& targets() const { return targets_; }
   const geo::LocalNed& frame() const { return frame_; }
   const WorldConfig& config() const { return cfg_; }
   ShipCommand initial_command() const { return {0.0, own_->state().rpm}; }
@@ -81,6 +82,7 @@ class World {
   uint64_t step_ = 0;
   std::unique_ptr<ShipModel> own_;
   std::vector<TargetShip> targets_;
+  bool any_colreg_ = false;  // some target has a rule-following helmsman
   geo::LocalNed frame_;
   NavSensor nav_;
   RadarSensor radar_;
