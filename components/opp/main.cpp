@@ -73,10 +73,11 @@ int main(int argc, char** argv) {
       std::string stale;  // why no plan is made now ("" = inputs fresh)
       mpgc::rt::WallClock wall;  // planning time and budget are wall time, also on simulated time
       mpgc::nav::JumpGate jumps;
-      std::optional<double> held_course;  // rule 17(a): the course a stand-on hold keeps
+      std::optional<opp::StandOnHold> held;  // rule 17(a): the last plan's stand-on hold
+      double held_at = 0;                     // [s] when it was planned
     };
     auto st = std::make_shared<State>(State{{}, {}, {}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {},
-                                            mpgc::nav::JumpGate({p.jumps.max_speed, p.jumps.margin, p.max_state_age}), {}});
+                                            mpgc::nav::JumpGate({p.jumps.max_speed, p.jumps.margin, p.max_state_age}), {}, 0});
 
     auto* path_out = &c->publisher<msg::Path>(mpgc::topics::kPath, mpgc::dds::QosProfile::latched());
     auto* enc_out = &c->publisher<msg::EncounterList>(mpgc::topics::kPlanEncounters, mpgc::dds::QosProfile::latched());
@@ -192,11 +193,13 @@ int main(int argc, char** argv) {
       auto wall = &st->wall;
       hooks.elapsed = [wall] { return wall->now_s(); };
       const bool warm = p.warm_start && st->warm_goal == goal.goal_id && !st->last_path.empty();
-      const opp::StandOnHold hold = opp::stand_on_hold(p, setup, st->held_course);
-      st->held_course.reset();
+      if (st->held) st->held->time -= now - st->held_at;  // counted from this plan
+      const opp::StandOnHold hold = opp::stand_on_hold(p, setup, st->held);
+      st->held.reset();
       if (hold.time > 0) {
         c->count("plans.stand_on_hold");
-        st->held_course = hold.course;
+        st->held = hold;
+        st->held_at = now;
       }
       if (!hold.why_not.empty()) c->log().debug("no stand-on hold: {}", hold.why_not);
       const opp::NodePlan np = opp::plan_node(*planner, p, setup, p.objective, hold,

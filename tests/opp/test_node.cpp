@@ -241,10 +241,20 @@ TEST(OppNode, AStandOnShipHoldsCourseAndSpeedUntilItMayAct) {
   EXPECT_NE(r.reason.find("stand-on (rule 17(a))"), std::string::npos) << r.reason;
   EXPECT_LT(opp::norm(r.path.back().p - goal.p), 1.0);
 
+  // The previous plan's hold: its course is kept, and its end while the new estimate is within
+  // plan.stand_on_steady (60 s) of it.
+  opp::StandOnHold prev = h;
+  prev.time = h.time + 40.0;
+  prev.course = 0.01;
+  const opp::StandOnHold kept = opp::stand_on_hold(p, s, prev);
+  EXPECT_DOUBLE_EQ(kept.time, h.time + 40.0);
+  EXPECT_DOUBLE_EQ(kept.course, 0.01);
+  prev.time = h.time + 90.0;
+  EXPECT_NEAR(opp::stand_on_hold(p, s, prev).time, h.time, 20.0);  // re-estimated (course 0.01: a little different)
   // Overtaken from 2 km astern (inside 3.5 d_safety) by a ship 2 m/s faster: the CPA is 1000 s
-  // away, the own ship sails 3500 m in 700 s, so it holds 300 s.
+  // away, the own ship sails 3 d_safety (plan.stand_on_time) in 600 s, so it holds 400 s.
   const opp::Setup ot = opp::build_setup(p, own, goal, {{6, {-2000, 0}, {7, 0}, {}}}, {}, 0);
-  EXPECT_NEAR(opp::stand_on_hold(p, ot).time, 300.0, 1e-6);
+  EXPECT_NEAR(opp::stand_on_hold(p, ot).time, 400.0, 1e-6);
   // Already within 3.5 d_safety: may act now, no hold.
   opp::Setup close = opp::build_setup(p, {{8000, 0}, 0.0, 5.0, 0.0, 0.0}, goal, {{3, {10000, -1600}, {0, 4}, {}}}, {}, 0);
   EXPECT_EQ(opp::stand_on_hold(p, close).time, 0.0);

@@ -70,6 +70,12 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
          "the lowest speed tried, and the emergency leg's, as a fraction of the planned speed");
   ps.add("plan.emergency", &p.emergency, true,
          "no path at any speed: publish the emergency leg (rule 17(b): starboard first, reduced speed) as RELAXED");
+  ps.add("plan.stand_on_time", &p.stand_on_time, 3.0, "-", 0.0, 100.0,
+         "... and until the CPA is nearer than the time to sail this many d_safety at the planned speed (the "
+         "evaluation: 4 r_min_cpa; a TCPA estimate is less sure than a range, so the margin is wider)");
+  ps.add("plan.stand_on_steady", &p.stand_on_steady, 60.0, "s", 0.0, 3600.0,
+         "a stand-on hold's end re-estimated within this of the previous plan's is kept (noisy TCPA of a slow "
+         "overtaker); 0: re-estimated every plan");
   ps.add("plan.stand_on_range", &p.stand_on_range, 3.5, "-", 0.0, 100.0,
          "rule 17(a): hold course and speed for a target the own ship stands on for until it is this many d_safety "
          "away (the evaluation lets a stand-on ship act from 4 r_min_cpa); 0: no hold");
@@ -150,7 +156,7 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   return ep;
 }
 
-StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<double> held) {
+StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, const std::optional<StandOnHold>& previous) {
   StandOnHold h;
   const Problem& pb = s.problem;
   if (!pb.colreg || !(p.stand_on_range > 0.0) || s.own.speed() < 0.5) return h;
@@ -162,7 +168,8 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<dou
   cp.cpa_risk = ep.cpa_risk;
   cp.tcpa_max = ep.tcpa_max;
   const double reach = p.stand_on_range * s.constraints.safety_distance;
-  h.course = held && std::isfinite(*held) ? *held : s.own.course();
+  const bool again = previous && previous->time > 0.0 && std::isfinite(previous->course);
+  h.course = again ? previous->course : s.own.course();
   const Vec2 v = s.own.speed() * Vec2{std::cos(h.course), std::sin(h.course)};
   double t_hold = std::numeric_limits<double>::infinity();
   for (const Target& t : pb.targets) {
@@ -189,14 +196,17 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<dou
       if (t_in < 0.0) continue;
     }
     // ... and, as the evaluation's stage 3, until the CPA is nearer than the time the own ship
-    // takes to sail that range (an overtaking ship closing slowly from astern leaves time).
-    if (A > 0.0) t_in = std::max(t_in, -B / A - reach / s.own.speed());
+    // takes to sail that range at the planned speed (an overtaking ship closing slowly from astern
+    // leaves time; the present speed may be low while the ship works up to it).
+    if (A > 0.0) t_in = std::max(t_in, -B / A - p.stand_on_time * s.constraints.safety_distance / pb.speed);
     if (t_in < t_hold) {
       t_hold = t_in;
       h.target = t.id;
     }
   }
   if (!std::isfinite(t_hold) || !h.why_not.empty()) return StandOnHold{0, 0, {}, 0, h.why_not};
+  if (again && previous->target == h.target && std::fabs(t_hold - previous->time) < p.stand_on_steady)
+    t_hold = previous->time;
   if (t_hold < 1.0) return {};  // may act now (17(a)(ii))
   const Vec2 end = pb.start + t_hold * v;
   auto refuse = [&](const std::string& why) {

@@ -51,6 +51,8 @@ struct NodeParams {
   int speed_steps = 3;           // [-] lower speeds tried when no compliant path exists (0: none)
   double min_speed_fraction = 0.25;  // [-] the lowest of them, of the planned speed
   bool emergency = true;         // no path at any speed: the emergency leg (emergency_path)
+  double stand_on_time = 3.0;    // [-] ... and until the CPA is nearer than sailing this many d_safety takes
+  double stand_on_steady = 60;   // [s] a new estimate of a hold's end this close to the last keeps it
   double stand_on_range = 3.5;   // [-] x d_safety: a stand-on ship keeps course and speed until a
                                  //     target it stands on for is this close (rule 17(a)); 0: no hold
   // Rule 13-15 sectors of the pinned and reported encounters (common colreg, not the planner's eq. 16 angle).
@@ -124,11 +126,12 @@ std::string chart_wait(const NodeParams& p, const Setup& s, bool have_chart);
 EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s);
 
 // Rule 17(a)(i): where one ship is to keep out of the way, the other keeps her course and speed.
-// While a target the own ship stands on for (crossing stand-on, overtaken) is a risk of collision
-// and farther than stand_on_range x d_safety or farther in time to the CPA than the own ship takes
-// to sail that range, and no target is pinned with a duty of the own ship (rule 16 comes first),
-// the plan's first leg holds the present course and speed until both are reached (the earliest
-// over such targets); only from there may the ship act (17(a)(ii), (b)).
+// While a target the own ship stands on for (crossing stand-on, overtaken) is a risk of collision,
+// and either farther than stand_on_range x d_safety or farther in time to the CPA than sailing
+// stand_on_time x d_safety takes at the planned speed, and no target is pinned with a duty of the
+// own ship (rule 16 comes first), the plan's first leg holds the present course and speed until
+// both are reached (the earliest over such targets); only from there may the ship act (17(a)(ii),
+// (b)).
 struct StandOnHold {
   double time = 0;      // [s] how long the course and speed are held (0: no hold)
   double course = 0;    // [rad] the course held
@@ -136,9 +139,12 @@ struct StandOnHold {
   uint32_t target = 0;  // the target that ends it first
   std::string why_not;  // a stand-on risk exists but is not held for, and why ("" otherwise)
 };
-// `held`: the course of the previous plan's hold, kept while it lasts (re-taking the present
-// course at every plan would let the track-keeping's small corrections add up to a turn).
-StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, std::optional<double> held = std::nullopt);
+// `previous`: the previous plan's hold, its time counted from this plan. Its course is kept while
+// the hold lasts (re-taking the present course at every plan would let the track-keeping's small
+// corrections add up to a turn), and so is its end while a new estimate lies within
+// plan.stand_on_steady of it (the TCPA of a ship overtaking slowly is noisy: ends jumping by a
+// minute from plan to plan made guidance cut short holds and turn early, DNV 05).
+StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, const std::optional<StandOnHold>& previous = std::nullopt);
 
 // Plans `s` with `planner`; with a hold, the path is the hold leg and then the planner's path from
 // its end (targets advanced by eq. 3, times shifted), the reason saying so. When nothing can be
