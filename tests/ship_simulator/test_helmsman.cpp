@@ -156,20 +156,25 @@ TEST(Helmsman, StandOnActsAloneToStarboardWhenClose) {
   EXPECT_GT(tr.min_range, 300.0);  // collision averted (it was a dead-on collision course)
 }
 
-// After the head-on ship is abaft the beam and opening, the target returns to its route.
+// After the head-on ship is abaft the beam and opening, the target returns to its route: its leg,
+// or without legs or waypoints its start course.
 TEST(Helmsman, ReturnsToRouteWhenPassedAndClear) {
-  sim::TargetShip tg(colreg_target());
-  const Straight own{9000.0, 20.0, geo::kPi, kSpeed};
-  bool left_route = false, back = false;
-  for (double t = 0.0; t < 2400.0; t += kDt) {
-    tg.step(t, kDt, {{0, own.at(t)}});
-    if (tg.helm_mode() == sim::HelmMode::kGiveWay) left_route = true;
-    if (left_route && tg.helm_mode() == sim::HelmMode::kRoute) back = true;
+  for (const bool legs : {true, false}) {
+    sim::TargetConfig c = colreg_target();
+    if (!legs) c.legs.clear();
+    sim::TargetShip tg(c);
+    const Straight own{9000.0, 20.0, geo::kPi, kSpeed};
+    bool left_route = false, back = false;
+    for (double t = 0.0; t < 2400.0; t += kDt) {
+      tg.step(t, kDt, {{0, own.at(t)}});
+      if (tg.helm_mode() == sim::HelmMode::kGiveWay) left_route = true;
+      if (left_route && tg.helm_mode() == sim::HelmMode::kRoute) back = true;
+    }
+    EXPECT_TRUE(left_route) << "legs " << legs;
+    EXPECT_TRUE(back) << "legs " << legs;
+    EXPECT_NEAR(tg.state().course, 0.0, 1e-9) << "legs " << legs;  // steering the route's course again
+    EXPECT_EQ(tg.helm_mode(), sim::HelmMode::kRoute);
   }
-  EXPECT_TRUE(left_route);
-  EXPECT_TRUE(back);
-  EXPECT_NEAR(tg.state().course, 0.0, 1e-9);  // steering the route's course again
-  EXPECT_EQ(tg.helm_mode(), sim::HelmMode::kRoute);
 }
 
 // No risk of collision (the other ship passes 3 NM off): the route is followed, nothing else.

@@ -65,6 +65,8 @@ TargetShip::TargetShip(TargetConfig cfg) : cfg_(std::move(cfg)) {
   s_.y = cfg_.y0;
   s_.course = geo::wrap_pi(cfg_.course0);
   s_.speed = cfg_.speed0;
+  route_course_ = s_.course;
+  route_speed_ = s_.speed;
   if (cfg_.behaviour == TargetBehaviour::kColreg) helm_.emplace(cfg_.helmsman);
 }
 
@@ -72,6 +74,13 @@ void TargetShip::ordered(double t, double* course, double* speed) {
   // Route first ...
   *course = s_.course;
   *speed = s_.speed;
+  // A rule-following target's route without a leg or waypoint to steer by (none given, or past the
+  // last waypoint) is the last course and speed the route ordered (at first the start course and
+  // speed), not the current course: the one it returns to after giving way.
+  if (helm_) {
+    *course = route_course_;
+    *speed = route_speed_;
+  }
   if (!cfg_.legs.empty()) {
     double t0 = 0.0;
     std::size_t i = 0;
@@ -87,6 +96,8 @@ void TargetShip::ordered(double t, double* course, double* speed) {
       *speed = cfg_.waypoints[wp_].speed;
     }  // after the last waypoint: hold course and speed
   }
+  route_course_ = *course;
+  route_speed_ = *speed;
   // ... then the latest scripted manoeuvre active at t overrides it.
   for (const auto& m : cfg_.manoeuvres) {
     if (t >= m.at && (m.duration == 0.0 || t < m.at + m.duration)) {

@@ -85,6 +85,7 @@ class TargetShip {
   TargetState s_;
   std::size_t wp_ = 0;  // next waypoint
   std::optional<Helmsman> helm_;  // behaviour kColreg only
+  double route_course_ = 0.0, route_speed_ = 0.0;  // [rad], [m/s] the route's last order (before manoeuvres)
   void move(double course, double speed, double dt);
 };
 
