@@ -448,7 +448,7 @@ int main(int argc, char** argv) {
   sr::RunOptions o;
   sr::RunCommandLine cl;
   app.add_option("scenarios", files, "scenario files (scenarios/*.yaml, or DNV traffic-generator situations *.json)");
-  app.add_option("--suite", suite, "a folder of scenarios/ to run (paper, chart), dnv (the 55 DNV situations), all");
+  app.add_option("--suite", suite, "a folder of scenarios/ to run (paper, chart, faults, rules), dnv (the 55 DNV situations), all");
   app.add_option("--out", o.out, "output folder (one sub-folder per scenario)");
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
