@@ -372,3 +372,22 @@ TEST(ColregVerdicts, ActingForOneStandOnTargetEndsTheHoldForAnother) {
   const auto alone = one(sr::synthetic::run_of(t, own, {far}));
   EXPECT_EQ(alone.held_course_and_speed, Verdict::kFail);
 }
+
+// The hold lasts until the CPA at the latest: a give-way ship that acted early may leave the range
+// above stage 3 to the end, and past the CPA the stand-on ship is free to go on its way.
+TEST(ColregVerdicts, TheHoldEndsAtTheClosestApproach) {
+  const auto t = sr::synthetic::times(800, 1.0);
+  // From the port bow on a collision course, it gives way at 60 s (60 deg to starboard, to 150
+  // deg), passing astern at about 1 km; the own ship turns after the CPA.
+  auto tgt = sail(1, 10, 2000, -2000, kPi / 2, 7, {{60, deg2rad(150), 7}}, t);
+  const auto e0 = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {}, t), {tgt}));
+  ASSERT_EQ(e0.situation, EncounterType::kCrossingStandOn);
+  auto own = sail(0, 10, 0, 0, 0, 7, {{e0.t_cpa + 20.0, deg2rad(40), 7}}, t);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}));
+  EXPECT_GT(e.cpa, 400.0);
+  EXPECT_LE(e.t_hold_end, e.t_cpa + 1.0);
+  EXPECT_EQ(e.held_course_and_speed, Verdict::kPass);
+  // Before the CPA the same turn fails.
+  auto early = sail(0, 10, 0, 0, 0, 7, {{e0.t_cpa - 60.0, deg2rad(40), 7}}, t);
+  EXPECT_EQ(one(sr::synthetic::run_of(t, early, {tgt})).held_course_and_speed, Verdict::kFail);
+}

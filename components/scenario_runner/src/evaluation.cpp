@@ -524,7 +524,9 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
         e.conflicting_obligation = true;
         break;
       }
-      for (; i <= end && !may_act(i) && t[i] < act_from; ++i) {
+      // ... and until the CPA at the latest: past it the other no longer has to keep out of the way
+      // (a give-way ship that acted may leave the range above stage 3 to the end).
+      for (; i <= end && !may_act(i) && t[i] < act_from && t[i] < e.t_cpa; ++i) {
         if (std::fabs(geo::angle_diff(course(own[i]), chi0)) > p.delta_course_md) held = false;
         if (u0 > 0.1 && std::fabs(own[i].sog - u0) / u0 > p.delta_speed_md) held = false;
       }

@@ -272,7 +272,7 @@ struct EncounterResult {
   // for a ship on her own port side: fails when the manoeuvre made for it was to port (>=
   // theta_sm_lim).
   Verdict not_turned_to_port = Verdict::kNotApplicable;
-  // Stand-on only: end of the hold window (range below r_colregs_3_max, or the encounter's end).
+  // Stand-on only: end of the hold window (stage 3, or the CPA at the latest).
   double t_hold_end = kNaN;  // [s]
   // Stand-on only: during the hold window the own ship had to give way to another target (its
   // give-way or head-on encounter overlapped), so it could not stand on; held_course_and_speed is
