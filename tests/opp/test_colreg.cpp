@@ -136,6 +136,12 @@ TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, ho, kP));
   // Opening: passed, any course back to the route.
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), {-2000, -800}, w, ho, kP));
+  // Once the alteration has begun, it is completed: holding course0 is no longer enough.
+  auto begun = ho;
+  begun.acted = true;
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, kNorth, y, w, begun, kP));
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(20), y, w, begun, kP));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, begun, kP));
   // Overtaking: either side, but apparent.
   const auto ot = pinned(opp::Obligation::kOvertaking);
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(-15), {3000, 0}, {3, 0}, ot, kP));

@@ -112,6 +112,37 @@ TEST(EncounterMemory, ATargetThatTurnsStartsANewEncounter) {
   EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kHeadOn);
 }
 
+// A target that turns as the rules ask of it (head-on: to starboard, rule 14) keeps the
+// encounter: the own ship still owes its part. A turn to port is unexpected: re-assessed.
+TEST(EncounterMemory, ATargetTurningAsTheRulesAskKeepsTheEncounter) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(1, 8000, -200, 180)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kHeadOn);
+  std::vector<opp::Target> stbd{target(1, 7000, -300, 180 + 35)};  // its starboard: course 215
+  mem.update(params(), own_at(300, 0, 0), stbd);
+  EXPECT_EQ(stbd[0].pinned.obligation, opp::Obligation::kHeadOn);
+  EXPECT_NEAR(stbd[0].pinned.course0, 0.0, 1e-12);
+  EXPECT_FALSE(stbd[0].pinned.acted);  // the own ship has not turned yet
+  std::vector<opp::Target> after{target(1, 6500, -400, 180 + 35)};
+  mem.update(params(), own_at(500, 50, 12), after);  // own course 12 deg: its alteration has begun
+  EXPECT_TRUE(after[0].pinned.acted);
+  opp::EncounterMemory mem2;
+  std::vector<opp::Target> t0{target(1, 8000, -200, 180)};
+  mem2.update(params(), own_at(0, 0, 0), t0);
+  std::vector<opp::Target> port{target(1, 7000, -300, 180 - 35)};  // to its port: course 145, no risk
+  mem2.update(params(), own_at(300, 0, 0), port);
+  EXPECT_EQ(port[0].pinned.obligation, opp::Obligation::kNone);
+  // A crossing target from port (own ship stand-on) that gives way to starboard: still stood on.
+  opp::EncounterMemory mem3;
+  std::vector<opp::Target> so{target(3, 6000, -6000, 90)};
+  mem3.update(params(), own_at(0, 0, 0), so);
+  ASSERT_EQ(so[0].pinned.obligation, opp::Obligation::kCrossingStandOn);
+  std::vector<opp::Target> gives{target(3, 5800, -5500, 90 + 60)};
+  mem3.update(params(), own_at(500, 0, 0), gives);
+  EXPECT_EQ(gives[0].pinned.obligation, opp::Obligation::kCrossingStandOn);
+}
+
 TEST(EncounterMemory, AGiveWayManoeuvreThatOpensTheRangeDoesNotEndTheEncounter) {
   opp::EncounterMemory mem;
   std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};  // range 8.5 km, beyond release_range

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -21,8 +22,13 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "mpgc/geo/geodesy.hpp"
 #include "mpgc/json/json.hpp"
+#include "mpgc/obstacle_manager/chart.hpp"
 #include "mpgc/opp/chart_obstacles.hpp"
+#include "mpgc/opp/node.hpp"
+#include "mpgc/opp/registry.hpp"
+#include "mpgc/runtime/params.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 
@@ -251,15 +257,132 @@ Versus versus(const opp::Scenario& s, int seeds, const std::vector<double>& wall
 
 }  // namespace
 
+// ---- The component's planner on charts: the Annapolis crop (scenarios/chart/annapolis.yaml) and
+// the canal of seed 000 scenario 3 (scenarios/paper/s3_colreg.yaml), built as the obstacle manager
+// builds them, planned with the component's defaults and the scenario's parameters from its first
+// position. Each plan's path is hashed, so two builds can be compared for identical plans.
+struct ChartCase {
+  std::string name;
+  std::shared_ptr<opp::ChartObstacles> chart;
+  opp::Bounds region;
+  opp::OwnReport own;
+  opp::GoalSpec goal;
+  std::vector<opp::TrackReport> tracks;
+  std::vector<std::string> overrides;
+};
+
+namespace om = mpgc::obstacle_manager;
+
+std::shared_ptr<opp::ChartObstacles> chart_from(om::ChartBuilder& b, const mpgc::geom::BoxNE& box) {
+  om::ObstacleSet set = om::crop(b.take(), box);
+  return std::make_shared<opp::ChartObstacles>(
+      std::make_shared<const mpgc::geom::FixedObstacleMap>(std::move(set.points), std::move(set.polygons)));
+}
+
+std::vector<ChartCase> chart_cases(const std::string& data) {
+  std::vector<ChartCase> out;
+  constexpr double kKn = 1852.0 / 3600.0, kDeg = 3.14159265358979323846 / 180.0;
+  auto vel = [&](double course_deg, double kn) {
+    return opp::Vec2{kn * kKn * std::cos(course_deg * kDeg), kn * kKn * std::sin(course_deg * kDeg)};
+  };
+  {
+    om::ChartParams cp;
+    cp.draught = 3.0;
+    om::ChartBuilder b(mpgc::geo::LocalNed({38.965 * kDeg, -76.45 * kDeg}), cp);
+    for (const char* f : {"LNDARE", "OBSTRN", "DEPARE"}) b.load_file(data + "/chart/crop_annapolis_" + f + ".geojson");
+    ChartCase c;
+    c.name = "annapolis";
+    c.own = {{-3850, 100}, 80 * kDeg, 9 * kKn, 80 * kDeg, 0};
+    const mpgc::geom::BoxNE box{c.own.p.x - 10000, c.own.p.y - 10000, c.own.p.x + 10000, c.own.p.y + 10000};
+    c.chart = chart_from(b, box);
+    c.region = {box.min_x, box.min_y, box.max_x, box.max_y};
+    c.goal.p = {-300, -400};
+    c.goal.heading = NAN;
+    c.goal.safety_distance = 100;
+    c.tracks = {{1, {-190, -490}, {0, 0}, 0}, {2, {-4480, 1151}, vel(20, 6), 0}};
+    c.overrides = {"plan.colreg_distance=926", "plan.step=250", "plan.max_iterations=10000", "plan.time_budget=30"};
+    out.push_back(std::move(c));
+  }
+  {
+    const double L = 320;
+    om::ChartBuilder b(mpgc::geo::LocalNed({38.80 * kDeg, -76.30 * kDeg}), om::ChartParams{});
+    b.add_line({{7.68 * L, -27.68 * L}, {127.68 * L, 92.32 * L}}, "wall1");
+    b.add_line({{-27.68 * L, 7.68 * L}, {92.32 * L, 127.68 * L}}, "wall2");
+    ChartCase c;
+    c.name = "s3_canal";
+    c.own = {{0, 0}, 45 * kDeg, 15.5 * kKn, 45 * kDeg, 0};
+    const mpgc::geom::BoxNE box{-10000, -10000, 42000, 42000};
+    c.chart = chart_from(b, box);
+    c.region = {box.min_x, box.min_y, box.max_x, box.max_y};
+    c.goal.p = {100 * L, 100 * L};
+    c.goal.heading = NAN;
+    c.goal.safety_distance = 10 * L;
+    c.tracks = {{1, {100 * L, 100 * L}, vel(225, 15.5), 0}};
+    c.overrides = {"plan.colreg_distance=9600", "plan.time_budget=30"};
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+// Plans each case `seeds` times (plan seeds 1..seeds) and prints the planning times and a hash of
+// every path and cost (equal hashes: the same plans bit for bit).
+void chart_section(int seeds) {
+  const char* env = std::getenv("MPGC_SHARED_DATA");
+  const std::string data = env ? env : "../shared/data";
+  std::printf("\n== the component's planner on charts (%d plans each, defaults + the scenario's parameters) ==\n", seeds);
+  std::printf("%-12s %10s %10s %10s %10s %12s %18s\n", "case", "median ms", "p95 ms", "max ms", "iter", "edge checks",
+              "path hash");
+  for (const ChartCase& c : chart_cases(data)) {
+    mpgc::rt::ParamSet ps;
+    opp::NodeParams np;
+    std::vector<std::unique_ptr<opp::Planner>> planners;
+    opp::declare(ps, np, planners);
+    for (const auto& o : c.overrides) ps.set_override(o);
+    ps.validate_and_apply();
+    std::vector<double> ms;
+    uint64_t hash = 1469598103934665603ULL, checks = 0, iters = 0;
+    auto mix = [&](double v) {
+      uint64_t u;
+      std::memcpy(&u, &v, sizeof u);
+      hash = (hash ^ u) * 1099511628211ULL;
+    };
+    for (int k = 0; k < seeds; ++k) {
+      const opp::Setup s = opp::build_setup(np, c.own, c.goal, opp::targets_at(c.tracks, 0, np.target_sigmas),
+                                            opp::ChartView{c.chart.get(), c.region}, static_cast<uint32_t>(k));
+      opp::Hooks hooks;
+      const auto t0 = Clock::now();
+      hooks.elapsed = [t0] { return since(t0); };
+      const opp::Result r = planners.front()->solve(s.request(np.objective, {}), hooks);
+      ms.push_back(1e3 * since(t0));
+      checks += r.stats.edge_checks;
+      iters += r.stats.iterations;
+      mix(r.cost.total);
+      for (const auto& w : r.path) {
+        mix(w.p.x);
+        mix(w.p.y);
+      }
+    }
+    std::printf("%-12s %10.2f %10.2f %10.2f %10.0f %12.0f %18llx\n", c.name.c_str(), median(ms), quantile(ms, 0.95),
+                *std::max_element(ms.begin(), ms.end()), double(iters) / seeds, double(checks) / seeds,
+                static_cast<unsigned long long>(hash));
+  }
+}
+
 int main(int argc, char** argv) {
   int seeds = 20;
+  bool charts_only = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) seeds = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--quick")) seeds = 5;
+    else if (!std::strcmp(argv[i], "--charts")) charts_only = true;
     else {
-      std::fprintf(stderr, "usage: mpgc_bench_opp [--seeds N] [--quick]\n");
+      std::fprintf(stderr, "usage: mpgc_bench_opp [--seeds N] [--quick] [--charts]\n");
       return 2;
     }
+  }
+  if (charts_only) {
+    chart_section(seeds);
+    return 0;
   }
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(1);  // once per process: OMPL's planners then draw a fixed sequence of seeds

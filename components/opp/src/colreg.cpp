@@ -61,6 +61,7 @@ bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncount
   const double turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi);
   const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
   const double a = either ? std::fabs(turn) : turn;
+  if (e.acted) return a >= p.apparent_turn;
   return !(a > p.port_tolerance && a < p.apparent_turn);
 }
 

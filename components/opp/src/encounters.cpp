@@ -25,6 +25,7 @@ void EncounterMemoryParams::validate() const {
   need(new_course > 0 && new_course <= geo::kPi, "new_course", "must be in (0, pi]");
   need(abaft_beam > 0 && abaft_beam < geo::kPi / 2, "abaft_beam", "must be in (0, pi/2)");
   need(head_on_sector > 0 && head_on_sector < geo::kPi / 2, "head_on_sector", "must be in (0, pi/2)");
+  need(acted_turn > 0 && acted_turn < geo::kPi / 2, "acted_turn", "must be in (0, pi/2)");
 }
 
 PinnedEncounter EncounterMemory::find(uint32_t id) const {
@@ -55,15 +56,27 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
       // Opening and farther than where it began (a give-way manoeuvre that opens the range for a
       // while has not ended the encounter).
       bool done = a.cpa.tcpa <= 0.0 && a.cpa.range > std::max(p.release_range, it->second.range0);
-      if (tk.speed() > 0.5)  // the course of a (nearly) stopped target is noise
-        done = done || std::fabs(std::remainder(tk.course() - e.target_course, 2.0 * geo::kPi)) > p.new_course;
+      if (tk.speed() > 0.5) {  // the course of a (nearly) stopped target is noise
+        // A target that turns starts a new encounter, unless it turns as the rules ask of it: to
+        // starboard when head-on (rule 14) or giving way to the own ship (rules 15-16), either way
+        // when overtaking it (rule 13). Its compliance is no reason to drop the own ship's part.
+        const double turn = std::remainder(tk.course() - e.target_course, 2.0 * geo::kPi);
+        const bool expected = ((e.obligation == Obligation::kHeadOn || e.obligation == Obligation::kCrossingStandOn) &&
+                               turn > 0.0) ||
+                              e.obligation == Obligation::kOvertaken;
+        done = done || (std::fabs(turn) > p.new_course && !expected);
+      }
       if (a.cpa.tcpa <= 0.0 && e.obligation == Obligation::kCrossingGiveWay)
         done = done || across_astern(e, t.v, r);
       else if (a.cpa.tcpa <= 0.0)
         done = done || std::fabs(a.beta) > 0.5 * geo::kPi;  // abaft the beam and opening
       if (!done) {
-        next[t.id] = it->second;
-        t.pinned = e;
+        Entry kept = it->second;
+        const double own_turn = std::remainder(own.course() - e.course0, 2.0 * geo::kPi);
+        const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
+        if (own.speed() > 0.5 && (either ? std::fabs(own_turn) : own_turn) > p.acted_turn) kept.e.acted = true;
+        next[t.id] = kept;
+        t.pinned = kept.e;
         continue;
       }
     }

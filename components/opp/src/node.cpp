@@ -153,6 +153,8 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   ep.release_range = s.constraints.colreg_distance;
   ep.abaft_beam = p.sector_abaft_beam;
   ep.head_on_sector = p.sector_head_on;
+  // An alteration has begun once the own course leaves the band a pinned leg may hold.
+  ep.acted_turn = std::max(s.constraints.colreg.port_tolerance, geo::deg2rad(1.0));
   return ep;
 }
 
@@ -182,6 +184,16 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, const std::option
       a = colreg::assess(s.own, {t.p.x, t.p.y, t.v.x, t.v.y}, cp);
     } catch (const std::exception&) {
       continue;  // non-finite: report_encounters names it
+    }
+    const bool pinned_so = t.pinned.obligation == Obligation::kCrossingStandOn || t.pinned.obligation == Obligation::kOvertaken;
+    if (pinned_so && !a.risk) {
+      // The give-way ship has acted: keep course and speed until it is past (17(a)(i) lasts while
+      // the other keeps out of the way; the memory releases the target once passed and clear).
+      if (a.cpa.tcpa > 0.0 && a.cpa.tcpa < t_hold) {
+        t_hold = a.cpa.tcpa;
+        h.target = t.id;
+      }
+      continue;
     }
     if (!a.risk || (a.type != colreg::EncounterType::kCrossingStandOn && a.type != colreg::EncounterType::kOvertaken))
       continue;

@@ -63,6 +63,12 @@ struct PinnedEncounter {
   double course0 = 0.0;  // [rad] own course over ground when the situation was fixed
   int track_side = 0;    // [-] side of the target's track the own ship was on then: sign(w ^ (x - y))
   double target_course = 0.0;  // [rad] the target's course then (a new course is a new encounter)
+  // The own ship has begun its alteration (EncounterMemoryParams::acted_turn): from then on a
+  // closing leg completes a readily apparent one (colreg_check_apparent) instead of returning to
+  // course0 — a turn begun and then given up is the "succession of small alterations" of rule
+  // 8(b) (a head-on ship that also turns must not make the own ship's turn a half one). Not kept
+  // across a restart.
+  bool acted = false;
 };
 
 // Side of the target's track (velocity w) that the own ship (at r from the target) is on: +1, -1,

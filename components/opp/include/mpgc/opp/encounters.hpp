@@ -31,6 +31,9 @@ struct EncounterMemoryParams {
   double new_course = 0.2617993877991494;  // [rad] 15 deg
   double abaft_beam = 0.39269908169872414;  // [rad] rule 13: overtaking from more than this abaft the beam
   double head_on_sector = 0.39269908169872414;  // [rad] rule 14: head-on when each is within this of the other's bow
+  // The own course this far to starboard of course0 (either side when overtaking or overtaken)
+  // marks a pinned encounter's alteration as begun (PinnedEncounter::acted).
+  double acted_turn = 0.08726646259971647;  // [rad] 5 deg
   // Throws std::invalid_argument naming the first bad field.
   void validate() const;
 };
