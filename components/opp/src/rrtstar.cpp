@@ -27,6 +27,7 @@ namespace mpgc::opp {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
 void require(bool ok, const char* field, const std::string& why) {
@@ -78,13 +79,14 @@ class Tree {
     k_rrt_ = pr.rewire_factor * (std::exp(1.0) + std::exp(1.0) / dim);
     const double measure = (pb.bounds.max_x - pb.bounds.min_x) * (pb.bounds.max_y - pb.bounds.min_y);
     r_rrt_ = pr.rewire_factor * std::sqrt(2.0 * (1.0 + 1.0 / dim) * (measure / kPi));
-    goal_fixed_ = o_.fixed_term(pb.goal.p);
+    goal_clear_ = o_.uses_fixed() ? v_.fixed_nearest(pb.goal.p) : kNaN;
+    goal_fixed_ = o_.fixed_term_at(goal_clear_);
     approach_ = std::isfinite(pb.goal.heading) && pb.goal.heading_tolerance < kPi;
     root_fixed_d_ = v_.fixed_distance(true);
     Node root;
     root.p = pb.start;
     root.dir = {std::cos(pb.heading), std::sin(pb.heading)};
-    root.fixed = o_.fixed_term(pb.start);
+    set_clearance(root);
     root.cost = root.fixed + o_.moving_term(pb.start, 0.0);  // k = 0 terms of eq. 7-8
     root.len = 0.0;
     add_node(root);
@@ -106,11 +108,11 @@ class Tree {
       const bool root = cur == 0;
       if (!v_.turn_ok(a.dir, seg, len, root)) break;
       if (edge_reject(a.p, a.len * inv_speed(), p, len, root) != ValidityChecker::kValid) break;
-      if (!v_.fixed_clear(a.p, p, root ? root_fixed_d_ : pr_.safety_distance)) break;
       Node n;
       n.p = p;
+      set_clearance(n);
+      if (!v_.fixed_clear(a.p, p, root ? root_fixed_d_ : pr_.safety_distance, clear_of(cur), clear_of(n))) break;
       n.dir = (1.0 / len) * seg;
-      n.fixed = o_.fixed_term(p);
       n.len = a.len + len;
       n.cost = a.cost + o_.edge_cost(a.dir, root, seg, len, n.fixed, p, n.len * inv_speed());
       n.parent = cur;
@@ -158,7 +160,9 @@ class Tree {
       return;
     }
     neighbours(xnew, near);
-    const double fixed_new = o_.fixed_term(xnew);
+    xnew_ = xnew;
+    clear_new_ = o_.uses_fixed() ? v_.fixed_nearest(xnew) : kNaN;
+    const double fixed_new = o_.fixed_term_at(clear_new_);
     // Choose parent: the candidates are checked in order of cost (the first valid wins). The
     // steering term (an acos) is paid only for those whose cost bound without it does not rule
     // them out: the cheapest candidate not yet costed is at least its bound.
@@ -214,6 +218,7 @@ class Tree {
     n.p = xnew;
     n.dir = (1.0 / parent_len) * (xnew - nodes_[parent].p);
     n.fixed = fixed_new;
+    n.clear = clear_new_;
     n.cost = parent_cost;
     n.len = nodes_[parent].len + parent_len;
     n.parent = parent;
@@ -240,8 +245,10 @@ class Tree {
   struct Node {
     Vec2 p, dir;
     double cost = 0, len = 0, fixed = 0, goal_cost = kInf;
+    double clear = kNaN;  // fixed().nearest(p), NaN until needed (fixed_clear's certificate)
     int parent = -1, first_child = -1, next_sibling = -1;
     bool goal_edge = false;
+    uint8_t goal_fixed = 0;  // the fixed clearance of the goal edge: 0 unknown, 1 clear, 2 blocked
   };
   struct Cand {
     double cost, moving, len;  // cost: the bound without steering until costed
@@ -293,9 +300,33 @@ class Tree {
     for (const auto& e : nbh_) fixed_cache_[e.second] = 0;
   }
 
+  // The clearance of the fixed obstacles at p, with the node term of eq. 7 from it (one query).
+  void set_clearance(Node& n) const {
+    n.clear = o_.uses_fixed() ? v_.fixed_nearest(n.p) : kNaN;
+    n.fixed = o_.fixed_term_at(n.clear);
+  }
+  double clear_of(int j) {
+    if (std::isnan(nodes_[j].clear)) nodes_[j].clear = v_.fixed_nearest(nodes_[j].p);
+    return nodes_[j].clear;
+  }
+  double clear_of(Node& n) const {
+    if (std::isnan(n.clear)) n.clear = v_.fixed_nearest(n.p);
+    return n.clear;
+  }
+  double clear_new() {
+    if (std::isnan(clear_new_)) clear_new_ = v_.fixed_nearest(xnew_);
+    return clear_new_;
+  }
+  double goal_clear() {
+    if (std::isnan(goal_clear_)) goal_clear_ = v_.fixed_nearest(pb_.goal.p);
+    return goal_clear_;
+  }
+
+  // The leg between node j and the current new point xnew_ (either way round).
   bool fixed_clear(int j, Vec2 a, Vec2 b) {
-    if (j == 0) return v_.fixed_clear(a, b, root_fixed_d_);  // leg from the start (escape)
-    if (fixed_cache_[j] == 0) fixed_cache_[j] = v_.fixed_clear(a, b, pr_.safety_distance) ? 1 : 2;
+    if (j == 0) return v_.fixed_clear(a, b, root_fixed_d_, clear_of(0), clear_new());  // leg from the start (escape)
+    if (fixed_cache_[j] == 0)
+      fixed_cache_[j] = v_.fixed_clear(a, b, pr_.safety_distance, clear_of(j), clear_new()) ? 1 : 2;
     return fixed_cache_[j] == 1;
   }
 
@@ -328,7 +359,11 @@ class Tree {
       ++rejects_[r];
       return;
     }
-    if (!v_.fixed_clear(a.p, pb_.goal.p, i == 0 ? root_fixed_d_ : pr_.safety_distance)) {
+    // The goal edge of a node is tried again at every goal sample; its fixed clearance never changes.
+    if (a.goal_fixed == 0)
+      a.goal_fixed = v_.fixed_clear(a.p, pb_.goal.p, i == 0 ? root_fixed_d_ : pr_.safety_distance, clear_of(i), goal_clear())
+                         ? 1 : 2;
+    if (a.goal_fixed != 1) {
       ++rejects_[ValidityChecker::kFixed];
       return;
     }
@@ -477,6 +512,8 @@ class Tree {
   ColregLevel snap_level_ = ColregLevel::kNone;
   std::vector<Vec2> snap_;
   double k_rrt_ = 0, r_rrt_ = 0, goal_fixed_ = 0, root_fixed_d_ = 0;
+  Vec2 xnew_;                                    // the current iteration's new point
+  double goal_clear_ = kNaN, clear_new_ = kNaN;  // fixed().nearest of the goal, of xnew_
   uint64_t rejects_[ValidityChecker::kRejectCount] = {};
   int goal_attempts_ = 0;
   double closest_goal_ = kInf;

@@ -23,8 +23,14 @@ class Objective {
   // Node term of eq. 7 (weighted).
   double fixed_term(Vec2 p) const {
     if (w_.gamma_f == 0.0) return 0.0;
-    return w_.gamma_f / std::max(fixed_->nearest(p), w_.min_margin);
+    return fixed_term_at(fixed_->nearest(p));
   }
+  // The same term from the clearance fixed().nearest(p) already known (a planner that keeps it).
+  double fixed_term_at(double clearance) const {
+    if (w_.gamma_f == 0.0) return 0.0;
+    return w_.gamma_f / std::max(clearance, w_.min_margin);
+  }
+  bool uses_fixed() const { return w_.gamma_f != 0.0; }
   // Node term of eq. 8 (weighted): the nearest target at time t.
   double moving_term(Vec2 p, double t) const;
   // Steering term of eq. 6 at the node the leg leaves (weighted); eq. 6 sums k = 1..p-1, so the
