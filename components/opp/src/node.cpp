@@ -66,6 +66,9 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
   ps.add("plan.speed_steps", &p.speed_steps, 3, "-", 0, 20,
          "no COLREG-compliant path at the planned speed: try this many lower speeds, evenly down to "
          "plan.min_speed_fraction (seed 000 §2: reduce speed when steering alone is not sufficient); 0: never");
+  ps.add("plan.speed_detour", &p.speed_detour, 1.3, "-", 1.0, 100.0,
+         "a compliant plan longer than this x the straight line to the goal is compared with slower ones by "
+         "arrival time");
   ps.add("plan.min_speed_fraction", &p.min_speed_fraction, 0.25, "-", 0.05, 1.0,
          "the lowest speed tried, and the emergency leg's, as a fraction of the planned speed");
   ps.add("plan.emergency", &p.emergency, true,
@@ -277,19 +280,34 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
     if (hold.time > 0.0 && v.size() > 1) v[1] = s.own.speed();  // the hold leg keeps the speed
     return v;
   };
+  auto length = [](const Result& r) {
+    double l = 0.0;
+    for (std::size_t i = 1; i < r.path.size(); ++i) l += norm(r.path[i].p - r.path[i - 1].p);
+    return l;
+  };
   NodePlan out;
   out.result = solve_with_hold(planner, s, objective, hold, warm, hooks);
   out.speeds = speeds_of(out.result, s.problem.speed);
-  const bool want = s.problem.colreg && out.result.status != Status::kInvalidInput;
-  for (int k = 1; want && out.result.status != Status::kOk && k <= p.speed_steps; ++k) {
+  const double straight = norm(s.problem.goal.p - s.problem.start);
+  // Slower speeds are tried when the plan is not compliant, or compliant only by a long detour
+  // (loops where a ship would slow down); among compliant plans the earliest arrival wins, the
+  // lost time being the cost of going slower.
+  const bool detour = out.result.status == Status::kOk && length(out.result) > p.speed_detour * straight;
+  const bool want = s.problem.colreg && out.result.status != Status::kInvalidInput &&
+                    (out.result.status != Status::kOk || detour);
+  double best_time = out.result.status == Status::kOk ? length(out.result) / s.problem.speed
+                                                      : std::numeric_limits<double>::infinity();
+  for (int k = 1; want && k <= p.speed_steps; ++k) {
     const double f = 1.0 - k * (1.0 - p.min_speed_fraction) / p.speed_steps;
     Setup slow = s;
     slow.problem.speed = f * s.problem.speed;
     Result r = solve_with_hold(planner, slow, objective, hold, {}, hooks);
-    const bool better = r.status == Status::kOk || (out.result.status == Status::kNoPath && r.status == Status::kRelaxed);
+    const double time = r.status == Status::kOk ? length(r) / slow.problem.speed : std::numeric_limits<double>::infinity();
+    const bool better = time < best_time || (out.result.status == Status::kNoPath && r.status == Status::kRelaxed);
     if (!better) continue;
-    r.reason = "speed reduced to " + fmt(100.0 * f) + " % (seed 000 §2: steering alone not sufficient)" +
-               (r.reason.empty() ? "" : "; " + r.reason);
+    best_time = time;
+    r.reason = "speed reduced to " + fmt(100.0 * f) + " % (seed 000 §2: steering alone not sufficient" +
+               (detour ? ", or only by a detour)" : ")") + (r.reason.empty() ? "" : "; " + r.reason);
     out.result = std::move(r);
     out.speeds = speeds_of(out.result, slow.problem.speed);
     out.speed_fraction = f;

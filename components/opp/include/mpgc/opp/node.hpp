@@ -50,6 +50,7 @@ struct NodeParams {
                                  //     plan's horizon, the straight-line time to the goal)
   int speed_steps = 3;           // [-] lower speeds tried when no compliant path exists (0: none)
   double min_speed_fraction = 0.25;  // [-] the lowest of them, of the planned speed
+  double speed_detour = 1.3;     // [-] ... also when the compliant plan is longer than this x the straight line
   bool emergency = true;         // no path at any speed: the emergency leg (emergency_path)
   double stand_on_time = 3.0;    // [-] ... and until the CPA is nearer than sailing this many d_safety takes
   double stand_on_steady = 60;   // [s] a new estimate of a hold's end this close to the last keeps it
@@ -153,10 +154,11 @@ Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& 
                        const StandOnHold& hold, std::vector<Vec2> warm, const Hooks& hooks);
 
 // Seed 000 §2: "the speed is reduced if the steering action alone is not sufficient". When the
-// plan at the planned speed is not COLREG-compliant (relaxed, or no path), the same problem is
-// planned at speed_steps lower speeds evenly down to min_speed_fraction of it and the fastest
-// compliant plan is taken (the time lost is its cost). With none compliant, the planned speed's
-// plan stands, unless it had no path at all and a lower speed has one. With no path at any speed
+// plan at the planned speed is not COLREG-compliant (relaxed, or no path), or compliant only by a
+// detour longer than speed_detour x the straight line to the goal, the same problem is planned at
+// speed_steps lower speeds evenly down to min_speed_fraction of it, and the compliant plan that
+// arrives first is taken (the time lost by going slower is its cost). With none compliant, the
+// planned speed's plan stands, unless it had no path at all and a lower speed has one. With no path at any speed
 // and `emergency`, emergency_path.
 struct NodePlan {
   Result result;
