@@ -307,14 +307,18 @@ TEST(Evaluation, RequiredViolationAndUnjudgedVerdictsFail) {
     ASSERT_EQ(m.failures.size(), 1u);
     EXPECT_NE(m.failures[0].find("not judged: never within r_colregs_2_max"), std::string::npos) << m.failures[0];
   }
-  // A stand-on target first met inside r_colregs_3_max: no course and speed to hold.
+  // A stand-on target first met inside stage 3: no course and speed to hold; the ship may act, so
+  // it is judged as one that acts: a safe distance (8(d)) and 17(c). Here it held on to a CPA of
+  // 57 m < r_min_cpa.
   auto close = sail(3, 10, 300, -220, kPi / 2, 7, {}, t);  // range 372 m < 400 m, predicted CPA 57 m
   r = sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {}, t), {close}, 50.0);
   c.required[0].compliant = true;
   m = sr::evaluate(r, {}, c);
   ASSERT_EQ(m.encounters[0].situation, mpgc::colreg::EncounterType::kCrossingStandOn);
+  EXPECT_EQ(m.encounters[0].held_course_and_speed, sr::Verdict::kNotApplicable);
+  EXPECT_EQ(m.encounters[0].kept_clear, sr::Verdict::kFail);
   ASSERT_EQ(m.failures.size(), 1u);
-  EXPECT_NE(m.failures[0].find("stand-on from inside stage 3"), std::string::npos) << m.failures[0];
+  EXPECT_NE(m.failures[0].find("did not keep clear"), std::string::npos) << m.failures[0];
 }
 
 TEST(Evaluation, BadInputIsRejectedWithTheFieldNamed) {

@@ -517,7 +517,10 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
         return !(u0 > 0.1) || colreg::cpa(kin(own[i]), kin(tg[i])).tcpa < p.r_colregs_3_max / u0;
       };
       e.tcpa_start = colreg::cpa(kin(own[start]), kin(tg[start])).tcpa;
-      if (may_act(start)) break;  // may act from the start: nothing to hold
+      if (may_act(start)) {  // may act from the start (17(a)(ii)): nothing to hold; judged as when
+        e.kept_clear = verdict(e.cpa >= p.r_min_cpa);  // acting: a safe distance (8(d)), 17(c)
+        break;
+      }
       bool held = true;
       std::size_t i = start;
       if (!(t[start] < act_from)) {  // acting for another stand-on target from the start
@@ -574,11 +577,6 @@ std::string unjudged(const EncounterResult& e, const EvaluationParams& p) {
   } else if (e.situation == colreg::EncounterType::kNone) {
     s << "no risk of collision when the encounter began (predicted CPA " << e.dcpa_start << " m, r_pref "
       << p.r_pref << " m)";
-  } else if ((e.situation == colreg::EncounterType::kCrossingStandOn || e.situation == colreg::EncounterType::kOvertaken) &&
-             e.held_course_and_speed == Verdict::kNotApplicable) {
-    if (!e.conflicting_obligation)
-      s << "stand-on from inside stage 3 (start range " << e.range_start << " m < r_colregs_3_max = " << p.r_colregs_3_max
-        << " m, TCPA " << e.tcpa_start << " s): no course and speed to hold";
   }
   return s.str();
 }
