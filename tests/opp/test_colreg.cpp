@@ -142,6 +142,9 @@ TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, kNorth, y, w, begun, kP));
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(20), y, w, begun, kP));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, begun, kP));
+  // Once made, the band is lifted (e.g. back towards the route while still closing).
+  begun.completed = true;
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), y, w, begun, kP));
   // Overtaking: either side, but apparent.
   const auto ot = pinned(opp::Obligation::kOvertaking);
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(-15), {3000, 0}, {3, 0}, ot, kP));

@@ -127,6 +127,10 @@ TEST(EncounterMemory, ATargetTurningAsTheRulesAskKeepsTheEncounter) {
   std::vector<opp::Target> after{target(1, 6500, -400, 180 + 35)};
   mem.update(params(), own_at(500, 50, 12), after);  // own course 12 deg: its alteration has begun
   EXPECT_TRUE(after[0].pinned.acted);
+  EXPECT_FALSE(after[0].pinned.completed);
+  std::vector<opp::Target> made{target(1, 6000, -500, 180 + 35)};
+  mem.update(params(), own_at(700, 150, 31), made);  // 31 deg: the readily apparent alteration is made
+  EXPECT_TRUE(made[0].pinned.completed);
   opp::EncounterMemory mem2;
   std::vector<opp::Target> t0{target(1, 8000, -200, 180)};
   mem2.update(params(), own_at(0, 0, 0), t0);

@@ -55,7 +55,7 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
 }
 
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
-  if (!(p.apparent_turn > p.port_tolerance) || e.obligation == Obligation::kNone) return true;
+  if (!(p.apparent_turn > p.port_tolerance) || e.obligation == Obligation::kNone || e.completed) return true;
   if (norm(v) < p.min_speed || dot(y0 - x0, v - w) <= 0.0) return true;  // not closing: no action owed
   if (e.obligation == Obligation::kCrossingGiveWay && across_astern(e, w, x0 - y0)) return true;
   const double turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi);

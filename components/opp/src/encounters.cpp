@@ -26,6 +26,7 @@ void EncounterMemoryParams::validate() const {
   need(abaft_beam > 0 && abaft_beam < geo::kPi / 2, "abaft_beam", "must be in (0, pi/2)");
   need(head_on_sector > 0 && head_on_sector < geo::kPi / 2, "head_on_sector", "must be in (0, pi/2)");
   need(acted_turn > 0 && acted_turn < geo::kPi / 2, "acted_turn", "must be in (0, pi/2)");
+  need(apparent_turn >= 0 && apparent_turn < geo::kPi, "apparent_turn", "must be in [0, pi)");
 }
 
 PinnedEncounter EncounterMemory::find(uint32_t id) const {
@@ -74,7 +75,9 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
         Entry kept = it->second;
         const double own_turn = std::remainder(own.course() - e.course0, 2.0 * geo::kPi);
         const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
-        if (own.speed() > 0.5 && (either ? std::fabs(own_turn) : own_turn) > p.acted_turn) kept.e.acted = true;
+        const double turned = either ? std::fabs(own_turn) : own_turn;
+        if (own.speed() > 0.5 && turned > p.acted_turn) kept.e.acted = true;
+        if (own.speed() > 0.5 && p.apparent_turn > 0.0 && turned >= p.apparent_turn) kept.e.completed = true;
         next[t.id] = kept;
         t.pinned = kept.e;
         continue;

@@ -158,6 +158,8 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   ep.head_on_sector = p.sector_head_on;
   // An alteration has begun once the own course leaves the band a pinned leg may hold.
   ep.acted_turn = std::max(s.constraints.colreg.port_tolerance, geo::deg2rad(1.0));
+  // Made once the own course is within a degree of the readily apparent alteration.
+  ep.apparent_turn = std::max(0.0, s.constraints.colreg.apparent_turn - geo::deg2rad(1.0));
   return ep;
 }
 

@@ -69,6 +69,10 @@ struct PinnedEncounter {
   // 8(b) (a head-on ship that also turns must not make the own ship's turn a half one). Not kept
   // across a restart.
   bool acted = false;
+  // ... and once the own course has been altered by apparent_turn, the alteration is made: the
+  // band is lifted (the evaluation's rule 8(b) asks the largest alteration to be readily
+  // apparent, not every leg: an overtaking ship may then run parallel while it passes).
+  bool completed = false;
 };
 
 // Side of the target's track (velocity w) that the own ship (at r from the target) is on: +1, -1,

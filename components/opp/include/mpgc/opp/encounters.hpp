@@ -34,6 +34,8 @@ struct EncounterMemoryParams {
   // The own course this far to starboard of course0 (either side when overtaking or overtaken)
   // marks a pinned encounter's alteration as begun (PinnedEncounter::acted).
   double acted_turn = 0.08726646259971647;  // [rad] 5 deg
+  // ... and this far (colreg's apparent_turn) as made (PinnedEncounter::completed); 0: never.
+  double apparent_turn = 0.5235987755982988;  // [rad] 30 deg
   // Throws std::invalid_argument naming the first bad field.
   void validate() const;
 };
