@@ -115,6 +115,37 @@ TEST(Mcap, ACorruptChunkIsAnError) {
   fs::remove(path);
 }
 
+// A chunk that decompresses to a whole number of the reader's 64 KiB buffers: the reader's last
+// call filled the buffer, called zstd once more with nothing left, and read zstd's hint for a next
+// frame as a frame cut short (CI failed a replay on such a chunk of a real recording).
+TEST(Mcap, AChunkOfWholeDecodeBuffersReadsBack) {
+  const auto path = tmp("whole_buffers.mcap");
+  // One chunk holding the schema, the channel and one message of `n` bytes; its uncompressed size.
+  auto write_one = [&](size_t n) {
+    mcap::WriterOptions o;
+    o.compression = "zstd";
+    o.chunk_size = 1u << 20;
+    mcap::Writer w(path, o);
+    const auto s = w.add_schema("mpgc::msg::Clock", "omgidl", "module mpgc { module msg { struct Clock { int64 time_ns; }; }; };");
+    const auto c = w.add_channel(s, "clock", "cdr");
+    std::string payload(n, '\0');
+    for (size_t i = 0; i < n; ++i) payload[i] = static_cast<char>((i * 2654435761u) >> 13);
+    w.write(c, 1000, 7, payload.data(), payload.size());
+    w.close();
+    const auto info = mcap::read_info(path);
+    return info.compression.at("zstd").uncompressed;
+  };
+  const uint64_t overhead = write_one(0);
+  for (const uint64_t chunk : {uint64_t{1} << 16, uint64_t{1} << 17, (uint64_t{1} << 17) + 1}) {
+    ASSERT_EQ(write_one(chunk - overhead), chunk);
+    std::vector<mcap::Message> got;
+    ASSERT_NO_THROW(got = all_messages(path)) << chunk << "-byte chunk";
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_EQ(got[0].data.size(), chunk - overhead);
+  }
+  fs::remove(path);
+}
+
 // fuzz_mcap's finding: a zstd chunk of 216 bytes whose header claims 4 GB. The reader used to
 // allocate (and zero) the claimed size before decompressing; now it streams, so reading the file
 // is an error that costs kilobytes (max RSS grows by far less than the claim).

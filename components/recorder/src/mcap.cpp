@@ -171,17 +171,19 @@ std::string decompress(const std::string& compression, const std::string& data, 
   out.reserve(std::min<uint64_t>(size, uint64_t{1} << 24));
   std::array<char, 1 << 16> buf;
   ZSTD_inBuffer in{data.data(), data.size(), 0};
+  // Done when a frame is complete (r == 0) and no input is left. Calling zstd again after that
+  // would start a next frame and return its header's size as a hint, which is no cut frame: a chunk
+  // of a whole number of buffers ended that way. A frame is cut short when zstd makes no progress.
   for (;;) {
     ZSTD_outBuffer ob{buf.data(), buf.size(), 0};
+    const size_t in_before = in.pos;
     const size_t r = ZSTD_decompressStream(ds.get(), &ob, &in);
     if (ZSTD_isError(r)) throw Error(what + ": zstd: " + ZSTD_getErrorName(r));
     if (out.size() + ob.pos > size)
       throw Error(what + ": chunk decompresses to more than the " + std::to_string(size) + " bytes its header says");
     out.append(buf.data(), ob.pos);
-    if (in.pos == in.size && ob.pos < ob.size) {
-      if (r != 0) throw Error(what + ": zstd: the compressed chunk ends inside a frame");
-      break;
-    }
+    if (r == 0 && in.pos == in.size) break;
+    if (ob.pos == 0 && in.pos == in_before) throw Error(what + ": zstd: the compressed chunk ends inside a frame");
   }
   if (out.size() != size)
     throw Error(what + ": chunk decompressed to " + std::to_string(out.size()) + " bytes, header says " + std::to_string(size));
