@@ -54,6 +54,9 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
   ps.add("plan.target_sigmas", &p.target_sigmas, 2.0, "-", 0.0, 10.0,
          "a target is kept d_safety + this many position sigmas away (obstacles/moving position_std, which grows "
          "while the target is not measured)");
+  ps.add("plan.tracking_margin", &p.tracking_margin, 0.02, "-", 0.0, 1.0,
+         "x d_safety kept beyond d_safety from every target: a plan that grazes d_safety is lost by the ship "
+         "following it (cross-track error of metres), so the margin is planned, not left to chance");
   ps.add("plan.require_chart", &p.require_chart, true,
          "no plan until obstacles/fixed gave the charted region (false: open water everywhere while none came)");
   ps.add("plan.warm_start", &p.warm_start, true, "re-use the previous path of the same goal");
@@ -137,6 +140,7 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
   s.constraints = p.constraints;
   if (goal.safety_distance > 0) s.constraints.safety_distance = goal.safety_distance;
   s.constraints.colreg_distance = std::max(s.constraints.colreg_distance, s.constraints.safety_distance);
+  for (Target& t : pb.targets) t.margin += p.tracking_margin * s.constraints.safety_distance;
   s.budget = p.budget;
   s.budget.seed = static_cast<uint64_t>(p.seed) + plan_index;
   s.own = colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
