@@ -373,6 +373,27 @@ TEST(ColregVerdicts, ActingForOneStandOnTargetEndsTheHoldForAnother) {
   EXPECT_EQ(alone.held_course_and_speed, Verdict::kFail);
 }
 
+// A stand-on target met already inside stage 3 (here a ship overtaking from 350 m astern, TCPA 50 s)
+// may be acted for from the start, so the own ship no longer holds course for a crossing ship
+// whose encounter overlaps it: the overtaken encounter's hold ends at its start (it had no end,
+// and the crossing ship's hold was judged as if the own ship were free to keep it).
+TEST(ColregVerdicts, AStandOnTargetInStage3FromTheStartEndsTheHoldForAnother) {
+  const auto t = sr::synthetic::times(700, 1.0);
+  auto astern = sail(1, 10, -350, 0, 0, 14, {}, t);
+  auto crossing = sail(2, 10, 1700, -1700, kPi / 2, 7, {}, t);  // from port, collision course, stage 3 ~ 200 s
+  auto own = sail(0, 10, 0, 0, 0, 7, {{10, deg2rad(40), 7}}, t);
+  const auto e = sr::evaluate_encounters(sr::synthetic::run_of(t, own, {astern, crossing}), {});
+  ASSERT_EQ(e.size(), 2u);
+  ASSERT_EQ(e[0].situation, EncounterType::kOvertaken);
+  EXPECT_NEAR(e[0].t_hold_end, 0.0, 1e-9);
+  ASSERT_EQ(e[1].situation, EncounterType::kCrossingStandOn);
+  EXPECT_TRUE(e[1].conflicting_obligation);
+  EXPECT_EQ(e[1].held_course_and_speed, Verdict::kNotApplicable);
+  EXPECT_EQ(e[1].not_turned_to_port, Verdict::kPass);
+  // Alone, the crossing ship's hold fails on the same turn.
+  EXPECT_EQ(one(sr::synthetic::run_of(t, own, {crossing})).held_course_and_speed, Verdict::kFail);
+}
+
 // The hold lasts until the CPA at the latest: a give-way ship that acted early may leave the range
 // above stage 3 to the end, and past the CPA the stand-on ship is free to go on its way.
 TEST(ColregVerdicts, TheHoldEndsAtTheClosestApproach) {

@@ -519,6 +519,7 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
       e.tcpa_start = colreg::cpa(kin(own[start]), kin(tg[start])).tcpa;
       if (may_act(start)) {  // may act from the start (17(a)(ii)): nothing to hold; judged as when
         e.kept_clear = verdict(e.cpa >= p.r_min_cpa);  // acting: a safe distance (8(d)), 17(c)
+        e.t_hold_end = t[start];  // its hold ends at once: so does that of another it overlaps
         break;
       }
       bool held = true;
