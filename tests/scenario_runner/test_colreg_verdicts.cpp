@@ -312,15 +312,31 @@ TEST(ColregVerdicts, StandOnIsExcusedWhileGivingWayToAnother) {
   EXPECT_EQ(e[1].kept_clear, Verdict::kPass);
   EXPECT_EQ(e[1].not_turned_to_port, Verdict::kPass);
   EXPECT_TRUE(e[1].compliant);
-  // The same conflict resolved by a port turn fails 17(c) for the stand-on target.
+  // The same conflict resolved by a port turn fails the give-way encounter (rule 15). Made 2.5 km
+  // from the stand-on ship, beyond its stage 3 (400 m), it is no action under 17(a)(ii) for that
+  // one, so not a 17(c) turn (StandOnTurningToPortInStage3FailsRule17c is one).
   auto port = sail(0, 10, 0, 0, 0, 7, {{40, deg2rad(-60), 7}}, t);
   const auto ep = sr::evaluate_encounters(sr::synthetic::run_of(t, port, {gw, so}), {});
-  EXPECT_EQ(ep[1].not_turned_to_port, Verdict::kFail);
-  EXPECT_FALSE(ep[1].compliant);
+  EXPECT_FALSE(ep[0].compliant);
+  EXPECT_EQ(ep[1].not_turned_to_port, Verdict::kPass);
   // Alone, the same early turn fails the stand-on verdict.
   const auto alone = one(sr::synthetic::run_of(t, own, {so}));
   EXPECT_FALSE(alone.conflicting_obligation);
   EXPECT_EQ(alone.held_course_and_speed, Verdict::kFail);
+}
+
+// Rule 17(c): the stand-on ship acting in its stage 3 (from about 245 s here) for a ship crossing
+// from port must not turn to port; a starboard turn there is what 17(c) leaves it.
+TEST(ColregVerdicts, StandOnTurningToPortInStage3FailsRule17c) {
+  const auto t = sr::synthetic::times(700, 1.0);
+  auto so = sail(1, 10, 2000, -2000, kPi / 2, 7, {}, t);
+  const auto port = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{250, deg2rad(-40), 7}}, t), {so}));
+  ASSERT_EQ(port.situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(port.held_course_and_speed, Verdict::kPass);
+  EXPECT_EQ(port.not_turned_to_port, Verdict::kFail);
+  EXPECT_FALSE(port.compliant);
+  const auto stbd = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{250, deg2rad(40), 7}}, t), {so}));
+  EXPECT_EQ(stbd.not_turned_to_port, Verdict::kPass);
 }
 
 // Each encounter is judged by the manoeuvre made for it: a small wobble is no manoeuvre (below

@@ -374,15 +374,22 @@ std::vector<Episode> course_episodes(const RunRecord& run, const EvaluationParam
 // The encounter's manoeuvre is the first of those that reached theta_sm_lim (smaller ones are
 // wobbles, not an alteration to avoid collision); its course changes are measured from the course
 // held before it, up to the CPA.
+// A manoeuvre is made for a target when it was detected during the encounter, up to the closest
+// approach, and began while that target was a risk of collision.
+bool made_for(const Episode& ep, const std::vector<ShipState>& own, const std::vector<ShipState>& tg, std::size_t start,
+              std::size_t kcpa, const EvaluationParams& p) {
+  if (ep.detected < start || ep.detected > kcpa) return false;
+  const colreg::Cpa c = colreg::cpa(kin(own[ep.from]), kin(tg[ep.from]));
+  return c.tcpa > 0.0 && c.dcpa < p.colreg.cpa_risk;
+}
+
 void attribute(EncounterResult& e, const RunRecord& run, const ShipTrack& tgt, std::size_t start, std::size_t kcpa,
                const std::vector<Episode>& episodes, const EvaluationParams& p) {
   const auto& t = run.t;
   const auto& own = run.own.states;
   const auto& tg = tgt.states;
   for (const Episode& ep : episodes) {
-    if (ep.detected < start || ep.detected > kcpa) continue;
-    const colreg::Cpa c = colreg::cpa(kin(own[ep.from]), kin(tg[ep.from]));
-    if (!(c.tcpa > 0.0 && c.dcpa < p.colreg.cpa_risk)) continue;
+    if (!made_for(ep, own, tg, start, kcpa, p)) continue;
     ++e.manoeuvres;
     if (ep.change < p.theta_sm_lim || !std::isnan(e.t_manoeuvre)) continue;
     const double chi = course(own[ep.from]);
@@ -507,8 +514,6 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
       break;
     case EncounterType::kCrossingStandOn:
     case EncounterType::kOvertaken: {
-      if (e.situation == EncounterType::kCrossingStandOn)  // rule 17(c), whenever the ship acts
-        e.not_turned_to_port = verdict(!(e.manoeuvre_side == Side::kPort && e.max_port_change >= p.theta_sm_lim));
       // Rule 17(a)(i): keep course and speed until the stand-on ship may act (stage 3): the
       // target within r_colregs_3_max and the CPA nearer in time than the own ship takes to sail
       // that range. A ship overtaking slowly from close astern is not yet a reason to act.
@@ -516,6 +521,22 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
         if (range[i] >= p.r_colregs_3_max) return false;
         return !(u0 > 0.1) || colreg::cpa(kin(own[i]), kin(tg[i])).tcpa < p.r_colregs_3_max / u0;
       };
+      // Rule 17(c) binds the action taken under 17(a)(ii) "to avoid collision with" this ship, the
+      // action it may take from stage 3: the first manoeuvre made for it detected there must not
+      // alter course to port. A turn made while it was still beyond stage 3 (for another ship, 10
+      // km off) is no action under 17(a)(ii) for it; a turn while holding is judged by the hold.
+      if (e.situation == EncounterType::kCrossingStandOn) {
+        bool to_port = false;
+        for (const Episode& ep : episodes) {
+          if (!made_for(ep, own, tg, start, kcpa, p) || ep.change < p.theta_sm_lim || !may_act(ep.detected)) continue;
+          double port = 0.0;
+          for (std::size_t i = ep.from; i <= kcpa; ++i)
+            port = std::max(port, -geo::angle_diff(course(own[i]), course(own[ep.from])));
+          to_port = ep.side == Side::kPort && port >= p.theta_sm_lim;
+          break;
+        }
+        e.not_turned_to_port = verdict(!to_port);
+      }
       e.tcpa_start = colreg::cpa(kin(own[start]), kin(tg[start])).tcpa;
       if (may_act(start)) {  // may act from the start (17(a)(ii)): nothing to hold; judged as when
         e.kept_clear = verdict(e.cpa >= p.r_min_cpa);  // acting: a safe distance (8(d)), 17(c)

@@ -268,9 +268,9 @@ struct EncounterResult {
   Verdict not_crossed_ahead = Verdict::kNotApplicable;    // crossing give-way (rule 15)
   Verdict kept_clear = Verdict::kNotApplicable;           // overtaking: cpa >= r_min_cpa (rule 13)
   Verdict held_course_and_speed = Verdict::kNotApplicable;  // stand-on until r_colregs_3_max (17)
-  // Crossing stand-on (rule 17(c)): a power-driven ship that acts shall not alter course to port
-  // for a ship on her own port side: fails when the manoeuvre made for it was to port (>=
-  // theta_sm_lim).
+  // Crossing stand-on (rule 17(c)): a power-driven ship that acts (17(a)(ii)) shall not alter
+  // course to port for a ship on her own port side: fails when the first manoeuvre made for it
+  // detected in its stage 3 (where the own ship may act for it) was to port (>= theta_sm_lim).
   Verdict not_turned_to_port = Verdict::kNotApplicable;
   // Stand-on only: end of the hold window (stage 3, or the CPA at the latest).
   double t_hold_end = kNaN;  // [s]
