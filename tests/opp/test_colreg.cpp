@@ -164,6 +164,13 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-30), y, w, so, kP).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(40), y, w, so, kP).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, kNorth, y, w, so, kP).compliant);
+  // 17(c) binds the action for this ship, taken when it is near (port_turn_range): 3.9 km off, a
+  // port turn (made for another ship) is not such action.
+  opp::ColregParams near = kP;
+  near.port_turn_range = 3000.0;
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), y, w, so, near).compliant);
+  near.port_turn_range = 4000.0;
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-30), y, w, so, near).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(35), y, w, so, kP));

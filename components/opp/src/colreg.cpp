@@ -48,7 +48,7 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     }
     case Obligation::kOvertaking:
     case Obligation::kOvertaken: out.compliant = !(dt <= 0.0); break;  // §5.3: not across its bow
-    case Obligation::kCrossingStandOn: out.compliant = !port_turn; break;  // rule 17(c)
+    case Obligation::kCrossingStandOn: out.compliant = !port_turn || norm(d) > p.port_turn_range; break;  // 17(c)
     default: break;  // kNone handled above
   }
   return out;

@@ -54,6 +54,10 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
   ps.add("plan.target_sigmas", &p.target_sigmas, 2.0, "-", 0.0, 10.0,
          "a target is kept d_safety + this many position sigmas away (obstacles/moving position_std, which grows "
          "while the target is not measured)");
+  ps.add("plan.rule17c_range", &p.rule17c_range, 5.0, "-", 0.1, 1e6,
+         "x d_safety: rule 17(c) (no turn to port for a crossing ship on the port side that the own ship stands on "
+         "for) binds within this range, where the own ship may act for that ship (beyond the evaluation's stage 3, "
+         "4 r_min_cpa); farther off a turn made for another ship is not action for it");
   ps.add("plan.tracking_margin", &p.tracking_margin, 0.02, "-", 0.0, 1.0,
          "x d_safety kept beyond d_safety from every target: a plan that grazes d_safety is lost by the ship "
          "following it (cross-track error of metres), so the margin is planned, not left to chance");
@@ -141,6 +145,7 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
   if (goal.safety_distance > 0) s.constraints.safety_distance = goal.safety_distance;
   s.constraints.colreg_distance = std::max(s.constraints.colreg_distance, s.constraints.safety_distance);
   for (Target& t : pb.targets) t.margin += p.tracking_margin * s.constraints.safety_distance;
+  s.constraints.colreg.port_turn_range = p.rule17c_range * s.constraints.safety_distance;
   s.budget = p.budget;
   s.budget.seed = static_cast<uint64_t>(p.seed) + plan_index;
   s.own = colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);

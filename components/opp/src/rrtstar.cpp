@@ -562,8 +562,11 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
   }
   auto tree = std::make_unique<Tree>(checker, objective, params, res.stats, hooks, params.seed);
   tree->colreg = problem.colreg ? ColregLevel::kFull : ColregLevel::kNone;
-  bool any_pinned = false;
-  for (const Target& t : problem.targets) any_pinned = any_pinned || is_duty(t.pinned.obligation);
+  bool any_duty = false, any_17c = false;
+  for (const Target& t : problem.targets) {
+    any_duty = any_duty || is_duty(t.pinned.obligation);
+    any_17c = any_17c || t.pinned.obligation == Obligation::kCrossingStandOn;
+  }
   if (!warm.empty()) res.stats.warm_started = tree->seed_chain(warm_tail(warm, problem.start));
   // Best over restarted trees (the incumbent survives a restart, so the cost stays monotone).
   double best_cost = tree->best_cost();
@@ -571,20 +574,31 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
   ColregLevel best_level = tree->best_level();
   int last_improvement = 0;
   // Budget shares after which a level still without a solution gives way to the next (§6): the
-  // full constraint for compliant_share, the pinned obligations alone (rule 17(b): the stand-on
-  // ship may act when the other does not) for half the rest, then none.
-  const double shares[2] = {params.compliant_share, 0.5 * (1.0 + params.compliant_share)};
+  // full constraint for compliant_share; the pinned duties (rule 17(b): the stand-on ship may act
+  // when the other does not), with rule 17(c) for a quarter of the rest and without it to half the
+  // rest; then none.
+  const double cs = params.compliant_share;
+  auto share = [&](ColregLevel l) {
+    if (l == ColregLevel::kFull) return cs;
+    if (l == ColregLevel::kPinned17c && any_duty) return cs + 0.25 * (1.0 - cs);
+    return 0.5 * (1.0 + cs);
+  };
+  auto next = [&](ColregLevel l) {
+    if (l == ColregLevel::kFull && any_17c) return ColregLevel::kPinned17c;
+    if ((l == ColregLevel::kFull || l == ColregLevel::kPinned17c) && any_duty) return ColregLevel::kPinned;
+    return ColregLevel::kNone;
+  };
   while (res.stats.iterations < params.max_iterations) {
     const double el = hooks.elapsed ? hooks.elapsed() - t0 : 0.0;
     if (hooks.elapsed && el >= params.time_budget) break;
     if (hooks.stop && hooks.stop()) break;
     if (tree->colreg != ColregLevel::kNone && best_pts.empty()) {
-      const double share = shares[tree->colreg == ColregLevel::kFull ? 0 : 1];
-      if (res.stats.iterations >= static_cast<int>(std::ceil(share * params.max_iterations)) ||
-          (hooks.elapsed && el >= share * params.time_budget)) {
+      const double sh = share(tree->colreg);
+      if (res.stats.iterations >= static_cast<int>(std::ceil(sh * params.max_iterations)) ||
+          (hooks.elapsed && el >= sh * params.time_budget)) {
         if (tree->colreg == ColregLevel::kFull) res.stats.iterations_compliant = res.stats.iterations;
         // §6: relax; the tree stays valid under the weaker constraint.
-        tree->colreg = tree->colreg == ColregLevel::kFull && any_pinned ? ColregLevel::kPinned : ColregLevel::kNone;
+        tree->colreg = next(tree->colreg);
       }
     }
     // A tree whose solution has not improved for restart_after iterations is stuck in one timing
@@ -631,7 +645,10 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
   res = finish(problem, best_pts, relaxed, checker, objective);
   res.stats = stats;
   if (relaxed)
-    res.reason = best_level == ColregLevel::kPinned
+    res.reason = best_level == ColregLevel::kPinned17c
+                     ? "no COLREG-compliant path within the compliant budget share; relaxed to the pinned duties and "
+                       "rule 17(c) (stand-on targets otherwise unconstrained)"
+                 : best_level == ColregLevel::kPinned
                      ? "no COLREG-compliant path within the compliant budget share; relaxed to the pinned obligations "
                        "(stand-on and no-risk targets unconstrained)"
                      : "no COLREG-compliant path within the compliant budget share; constraint relaxed";

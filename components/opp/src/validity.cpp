@@ -49,7 +49,10 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
     const bool pinned = tg.pinned.obligation != Obligation::kNone;
     // The first relaxation keeps the own ship's duties; a stand-on target is then unconstrained
     // (rule 17(b): it may act as best aids to avoid collision).
-    if (level == ColregLevel::kNone || (level == ColregLevel::kPinned && !is_duty(tg.pinned.obligation))) continue;
+    const Obligation o = tg.pinned.obligation;
+    if (level == ColregLevel::kNone || (level == ColregLevel::kPinned && !is_duty(o)) ||
+        (level == ColregLevel::kPinned17c && !is_duty(o) && o != Obligation::kCrossingStandOn))
+      continue;
     // §5 at the leg's start and every colreg_spacing along it (a long leg must not jump over the
     // zone). A pinned obligation holds from the moment the risk of collision was found, at any
     // range: crossing ahead of a give-way target just outside d_COLREG is still crossing ahead.

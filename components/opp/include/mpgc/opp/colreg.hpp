@@ -22,6 +22,10 @@ struct ColregParams {
   // range to a pinned target closes, a leg holds the course it was pinned at (within
   // port_tolerance) or is altered by at least this much (colreg_check_apparent). 0: no band.
   double apparent_turn = 0.5235987755982988;      // [rad] 30 deg, the NTNU evaluator's delta_course_app
+  // Rule 17(c) binds the stand-on ship's action under 17(a)(ii) for the crossing ship, the action it
+  // may take once that ship is near: within this range a leg closing it may not turn to port of
+  // course0; farther off a turn (made for another ship) is no such action.
+  double port_turn_range = 1e300;                 // [m] (the node sets plan.rule17c_range x d_safety)
 };
 
 // The situation of one leg in the project's one encounter vocabulary (colreg::EncounterType):

@@ -65,9 +65,11 @@ struct Problem {
   bool colreg = true;                  // require §5 compliance first (relax only if none, §6)
 };
 
-// How much of COLREG an edge must meet: every rule (§5 per leg, pinned obligations), the pinned
-// obligations alone (the first relaxation), or none (§6).
-enum class ColregLevel { kNone, kPinned, kFull };
+// How much of COLREG an edge must meet: every rule (§5 per leg, pinned obligations); the pinned
+// duties and rule 17(c) (the first relaxation: a stand-on ship may act, 17(b), but not to port for
+// a crossing ship on its port side, which the rules ask "if the circumstances of the case admit");
+// the pinned duties alone; or none (§6).
+enum class ColregLevel { kNone, kPinned, kPinned17c, kFull };
 
 // The constraints of §4.1, §4.2 and §5: what the validity checker enforces.
 struct ConstraintParams {
