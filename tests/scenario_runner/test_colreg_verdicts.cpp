@@ -339,6 +339,28 @@ TEST(ColregVerdicts, StandOnTurningToPortInStage3FailsRule17c) {
   EXPECT_EQ(stbd.not_turned_to_port, Verdict::kPass);
 }
 
+// The encounter begins with the risk of collision, not with the range: the own ship heads east,
+// the target 2 km north sails south (no risk), then the own ship turns north onto the target's
+// reciprocal (head-on) and later alters to starboard. Classified when the range first fell below
+// r_colregs_2_max it was no encounter ("not judged"); now it is the head-on it became.
+TEST(ColregVerdicts, AnEncounterBeginsWhenTheRiskOfCollisionDoes) {
+  const auto t = sr::synthetic::times(400, 1.0);
+  auto tgt = sail(1, 10, 2000, 300, kPi, 7, {}, t);
+  auto own = sail(0, 10, 0, 0, kPi / 2, 7, {{40, 0.0, 7}, {110, deg2rad(35), 7}}, t);
+  const auto e = one(sr::synthetic::run_of(t, own, {tgt}));
+  EXPECT_EQ(e.situation, EncounterType::kHeadOn);
+  EXPECT_GT(e.t_start, 40.0);
+  EXPECT_EQ(e.turned_starboard, Verdict::kPass);
+  EXPECT_TRUE(e.compliant);
+  // Holding on for the meeting without the starboard turn is judged, and fails.
+  const auto held = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, kPi / 2, 7, {{40, 0.0, 7}}, t), {tgt}));
+  EXPECT_EQ(held.situation, EncounterType::kHeadOn);
+  EXPECT_EQ(held.turned_starboard, Verdict::kFail);
+  // A target that never is a risk stays no encounter.
+  const auto never = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, kPi / 2, 7, {}, t), {tgt}));
+  EXPECT_EQ(never.situation, EncounterType::kNone);
+}
+
 // Each encounter is judged by the manoeuvre made for it: a small wobble is no manoeuvre (below
 // theta_sm_lim), so the 40 deg starboard turn after a 4 deg port wobble is the one judged.
 TEST(ColregVerdicts, AWobbleBeforeTheTurnIsNotTheManoeuvre) {

@@ -438,6 +438,15 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
     std::tie(e.cpa, e.t_cpa) = closest(0, n - 1);
     return e;
   }
+  // The rules of Part B, Section II bind from when risk of collision exists (rules 7, 13-17): the
+  // encounter is classified at the first sample within range that has it. A ship met while it
+  // lay stopped, or while the own ship was still turning onto the leg that meets it, becomes an
+  // encounter when the risk appears (Annapolis: the motor vessel left its berth at 455 s).
+  for (std::size_t i = start; i < n; ++i)
+    if (range[i] < p.r_colregs_2_max && colreg::assess(kin(own[i]), kin(tg[i]), p.colreg).type != colreg::EncounterType::kNone) {
+      start = i;
+      break;
+    }
   e.encountered = true;
   e.t_start = t[start];
   e.range_start = range[start];
@@ -597,8 +606,8 @@ std::string unjudged(const EncounterResult& e, const EvaluationParams& p) {
   if (!e.encountered) {
     s << "never within r_colregs_2_max = " << p.r_colregs_2_max << " m";
   } else if (e.situation == colreg::EncounterType::kNone) {
-    s << "no risk of collision when the encounter began (predicted CPA " << e.dcpa_start << " m, r_pref "
-      << p.r_pref << " m)";
+    s << "no risk of collision within r_colregs_2_max at any time (predicted CPA " << e.dcpa_start
+      << " m when the range first fell below it, r_pref " << p.r_pref << " m)";
   }
   return s.str();
 }

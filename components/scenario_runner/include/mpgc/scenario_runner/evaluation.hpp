@@ -152,8 +152,9 @@ struct EvaluationParams {
   double reference_length = 10.0;  // [m] ship length the defaults are meant for
   double scale = 1.0;              // [-] s applied to the defaults (informational; set by scaled_to)
 
-  // Stage ranges (Woerner): an encounter starts when the range first drops below r_colregs_2_max
-  // (its situation and roles are classified then); a stand-on ship may act below r_colregs_3_max
+  // Stage ranges (Woerner): an encounter starts at the first time the range is below
+  // r_colregs_2_max with a risk of collision (its situation and roles are classified then; with
+  // none ever, when the range first dropped below it); a stand-on ship may act below r_colregs_3_max
   // (rule 17(a)(ii)); below r_colregs_4_max both ships must act.
   double r_colregs_2_max = 2500.0;  // [m]
   double r_colregs_3_max = 400.0;   // [m] 4 r_min_cpa (NTNU: 1100, see above)
