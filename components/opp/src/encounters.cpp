@@ -29,6 +29,16 @@ void EncounterMemoryParams::validate() const {
   need(apparent_turn >= 0 && apparent_turn < geo::kPi, "apparent_turn", "must be in [0, pi)");
 }
 
+colreg::ColregParams EncounterMemoryParams::assessment() const {
+  colreg::ColregParams cp;
+  cp.abaft_beam = abaft_beam;
+  cp.head_on_sector = head_on_sector;
+  cp.d_colreg = std::numeric_limits<double>::infinity();  // the TCPA limit bounds the range
+  cp.cpa_risk = cpa_risk;
+  cp.tcpa_max = tcpa_max;
+  return cp;
+}
+
 PinnedEncounter EncounterMemory::find(uint32_t id) const {
   const auto it = pinned_.find(id);
   return it == pinned_.end() ? PinnedEncounter{} : it->second.e;
@@ -37,12 +47,7 @@ PinnedEncounter EncounterMemory::find(uint32_t id) const {
 void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipKinematics& own,
                              std::vector<Target>& targets) {
   p.validate();
-  colreg::ColregParams cp;
-  cp.abaft_beam = p.abaft_beam;
-  cp.head_on_sector = p.head_on_sector;
-  cp.d_colreg = std::numeric_limits<double>::infinity();  // the TCPA limit bounds the range
-  cp.cpa_risk = p.cpa_risk;
-  cp.tcpa_max = p.tcpa_max;
+  const colreg::ColregParams cp = p.assessment();
   std::vector<colreg::Assessment> as;  // all first, so that bad input leaves the memory unchanged
   for (const Target& t : targets) as.push_back(colreg::assess(own, {t.p.x, t.p.y, t.v.x, t.v.y}, cp));
   std::map<uint32_t, Entry> next;

@@ -176,13 +176,7 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, const std::option
   StandOnHold h;
   const Problem& pb = s.problem;
   if (!pb.colreg || !(p.stand_on_range > 0.0) || s.own.speed() < 0.5) return h;
-  const EncounterMemoryParams ep = encounter_params(p, s);
-  colreg::ColregParams cp;
-  cp.abaft_beam = ep.abaft_beam;
-  cp.head_on_sector = ep.head_on_sector;
-  cp.d_colreg = std::numeric_limits<double>::infinity();
-  cp.cpa_risk = ep.cpa_risk;
-  cp.tcpa_max = ep.tcpa_max;
+  const colreg::ColregParams cp = encounter_params(p, s).assessment();
   const double reach = p.stand_on_range * s.constraints.safety_distance;
   const bool again = previous && previous->time > 0.0 && std::isfinite(previous->course);
   h.course = again ? previous->course : s.own.course();

@@ -38,6 +38,8 @@ struct EncounterMemoryParams {
   double apparent_turn = 0.5235987755982988;  // [rad] 30 deg
   // Throws std::invalid_argument naming the first bad field.
   void validate() const;
+  // The risk-of-collision assessment these parameters describe (any range: tcpa_max bounds it).
+  colreg::ColregParams assessment() const;
 };
 
 // One pinned encounter as it is remembered across a restart (memory.hpp).
