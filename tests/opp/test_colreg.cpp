@@ -171,6 +171,13 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), y, w, so, near).compliant);
   near.port_turn_range = 4000.0;
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-30), y, w, so, near).compliant);
+  // Ahead of the beam, a port leg is refused even where the range does not close (the ship 1 km on
+  // the port bow: turning round its bow at constant range is turning toward it).
+  const opp::Vec2 bow{866, -500}, w5{5, 0};
+  ASSERT_LE(opp::dot(bow, heading(-75) - w5), 0.0);  // not closing
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so, near).compliant);
+  // Abaft the beam it is passed: a port leg goes astern of it.
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), {-900, -300}, {0, 0.5}, so, near).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(35), y, w, so, kP));
