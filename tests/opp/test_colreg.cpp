@@ -176,7 +176,8 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   const opp::Vec2 bow{866, -500}, w5{5, 0};
   ASSERT_LE(opp::dot(bow, heading(-75) - w5), 0.0);  // not closing
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so, near).compliant);
-  // Abaft the beam it is passed: a port leg goes astern of it.
+  // Crossed ahead to the starboard bow, or abaft the beam, it is passed: a port leg goes astern of it.
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), {866, 500}, {0, 7}, so, near).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), {-900, -300}, {0, 0.5}, so, near).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
