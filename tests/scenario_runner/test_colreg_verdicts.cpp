@@ -339,6 +339,18 @@ TEST(ColregVerdicts, StandOnTurningToPortInStage3FailsRule17c) {
   EXPECT_EQ(stbd.not_turned_to_port, Verdict::kPass);
 }
 
+// Rule 17(c) forbids a port turn "for a vessel on her own port side". A crossing ship that has
+// crossed ahead (300 m) and is still closing on the starboard bow (from about 141 s here; CPA
+// 119 m at 164 s) is no longer on the port side: a port turn at 150 s turns away from it.
+TEST(ColregVerdicts, APortTurnOnceTheCrossingShipIsOnTheStarboardBowIsNot17c) {
+  const auto t = sr::synthetic::times(500, 1.0);
+  auto so = sail(1, 10, 2000, -700, 3 * kPi / 4, 7, {}, t);
+  const auto e = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{150, deg2rad(-40), 7}}, t), {so}));
+  ASSERT_EQ(e.situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(e.held_course_and_speed, Verdict::kPass);
+  EXPECT_EQ(e.not_turned_to_port, Verdict::kPass);
+}
+
 // The encounter begins with the risk of collision, not with the range: the own ship heads east,
 // the target 2 km north sails south (no risk), then the own ship turns north onto the target's
 // reciprocal (head-on) and later alters to starboard. Classified when the range first fell below

@@ -532,16 +532,20 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
       };
       // Rule 17(c) binds the action taken under 17(a)(ii) "to avoid collision with" this ship, the
       // action it may take from stage 3: the first manoeuvre made for it detected there must not
-      // alter course to port. A turn made while it was still beyond stage 3 (for another ship, 10
-      // km off) is no action under 17(a)(ii) for it; a turn while holding is judged by the hold.
+      // alter course to port while the ship is "on her own port side". A turn made while it was
+      // still beyond stage 3 (for another ship, 10 km off) is no action under 17(a)(ii) for it; a
+      // turn while holding is judged by the hold; a port turn once it has crossed ahead to the
+      // starboard bow turns away from it (DNV 48).
       if (e.situation == EncounterType::kCrossingStandOn) {
         bool to_port = false;
         for (const Episode& ep : episodes) {
           if (!made_for(ep, own, tg, start, kcpa, p) || ep.change < p.theta_sm_lim || !may_act(ep.detected)) continue;
+          const Vec2 d = pos(tg[ep.from]) - pos(own[ep.from]);
+          const bool on_port_side = geo::angle_diff(std::atan2(d.y, d.x), course(own[ep.from])) < 0.0;
           double port = 0.0;
           for (std::size_t i = ep.from; i <= kcpa; ++i)
             port = std::max(port, -geo::angle_diff(course(own[i]), course(own[ep.from])));
-          to_port = ep.side == Side::kPort && port >= p.theta_sm_lim;
+          to_port = on_port_side && ep.side == Side::kPort && port >= p.theta_sm_lim;
           break;
         }
         e.not_turned_to_port = verdict(!to_port);
