@@ -179,6 +179,24 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   // Crossed ahead to the starboard bow, or abaft the beam, it is passed: a port leg goes astern of it.
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), {866, 500}, {0, 7}, so, near).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), {-900, -300}, {0, 0.5}, so, near).compliant);
+  // Altered 40 deg to starboard (for another ship) with the crossing ship closing on the port beam,
+  // turning back toward the route is turning to port for it (DNV 27, 30): refused while it closes
+  // on the port side of the course held, allowed along that course or once it is on the starboard side.
+  auto held = so;
+  held.held_17c = 40.0 * mpgc::geo::kPi / 180.0;
+  const opp::Vec2 beam{1286, -1532}, wne{4, 5};  // 2 km on the port beam of course 40, heading north-east
+  ASSERT_GT(opp::dot(beam, heading(20) - wne), 0.0);  // closing
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, so, near).compliant);  // no reference yet
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, near).compliant);
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(0), beam, wne, held, near).compliant);
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(38), beam, wne, held, near).compliant);
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(20), {1000, 2000}, {-5, -5}, held, near).compliant);
+  // A port leg that passes it farther than port_turn_cpa (380 m here) is no turn for it.
+  auto wide = near;
+  wide.port_turn_cpa = 300.0;
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
+  wide.port_turn_cpa = 500.0;
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(35), y, w, so, kP));

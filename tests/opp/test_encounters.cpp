@@ -147,6 +147,34 @@ TEST(EncounterMemory, ATargetTurningAsTheRulesAskKeepsTheEncounter) {
   EXPECT_EQ(gives[0].pinned.obligation, opp::Obligation::kCrossingStandOn);
 }
 
+// Rule 17(c)'s reference course follows the most starboard course held while the crossing ship
+// closes on the port side within port_turn_range, and not beyond that range.
+TEST(EncounterMemory, TheRule17cReferenceIsTheMostStarboardCourseHeldNearTheShip) {
+  auto p = params();
+  p.port_turn_range = 5000;
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> far{target(3, 6000, -6000, 90)};  // 8.5 km off: beyond the range
+  mem.update(p, own_at(0, 0, 0), far);
+  ASSERT_EQ(far[0].pinned.obligation, opp::Obligation::kCrossingStandOn);
+  EXPECT_TRUE(std::isnan(far[0].pinned.held_17c));
+  std::vector<opp::Target> near{target(3, 4000, -2400, 90)};
+  mem.update(p, own_at(1000, 0, 35), near);  // altered 35 deg to starboard for another ship
+  EXPECT_NEAR(near[0].pinned.held_17c, 35 * kDeg, 1e-9);
+  std::vector<opp::Target> back{target(3, 4000, -2000, 90)};
+  mem.update(p, own_at(1200, 150, 10), back);  // coming back: the reference stays
+  EXPECT_NEAR(back[0].pinned.held_17c, 35 * kDeg, 1e-9);
+  // No risk of collision (its predicted CPA, 740 m, beyond cpa_risk): the reference does not follow.
+  opp::EncounterMemory mem2;
+  std::vector<opp::Target> far2{target(3, 6000, -6000, 90)};
+  mem2.update(p, own_at(0, 0, 0), far2);
+  p.cpa_risk = 500;
+  std::vector<opp::Target> near2{target(3, 4000, -2400, 90)};
+  mem2.update(p, own_at(1000, 0, 35), near2);
+  EXPECT_TRUE(std::isnan(near2[0].pinned.held_17c));
+  p.port_turn_range = 0;
+  EXPECT_THROW(mem.update(p, own_at(1200, 150, 10), back), std::invalid_argument);
+}
+
 TEST(EncounterMemory, AGiveWayManoeuvreThatOpensTheRangeDoesNotEndTheEncounter) {
   opp::EncounterMemory mem;
   std::vector<opp::Target> ts{target(2, 6000, 6000, -90)};  // range 8.5 km, beyond release_range

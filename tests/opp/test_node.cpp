@@ -302,7 +302,8 @@ TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
 }
 
 // Rule 17(b): no path at all (here: one iteration, no tree) gives the emergency leg, starboard
-// first at reduced speed; to port when a fixed obstacle lies to starboard.
+// first, at reduced speed unless the planned speed passes 10 % farther; to port when a fixed
+// obstacle lies to starboard.
 TEST(OppNode, NoPathAtAllGivesTheEmergencyLegStarboardFirst) {
   opp::NodeParams p = declared({"plan.max_iterations=1", "plan.warm_start=false"});
   const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
@@ -316,13 +317,24 @@ TEST(OppNode, NoPathAtAllGivesTheEmergencyLegStarboardFirst) {
   ASSERT_EQ(np.result.path.size(), 2u);
   EXPECT_GT(np.result.path[1].p.y, 0.0);  // east of north: starboard
   EXPECT_NE(np.result.reason.find("emergency (rule 17(b))"), std::string::npos);
-  EXPECT_DOUBLE_EQ(np.speeds[1], 0.25 * 5.0);
+  // 6 km off, turning away at the planned speed opens the range more within the leg's time (2.2 km
+  // at 25 %, 4.5 km at full speed): the speed that passes farther is taken.
+  EXPECT_DOUBLE_EQ(np.speed_fraction, 1.0) << np.result.reason;
+  EXPECT_DOUBLE_EQ(np.speeds[1], 5.0);
   // Land to starboard: the leg goes to port.
   const opp::DiscObstacles land({{{600, 900}, 400}});
   const opp::Setup s2 = opp::build_setup(p, own, goal, tg, {&land, std::nullopt}, 0);
   const opp::Result e = opp::emergency_path(p, s2, "test");
   ASSERT_EQ(e.path.size(), 2u);
   EXPECT_LT(e.path[1].p.y, 0.0);
+  // Overtaken from close astern by a faster ship on the own track, slowing down brings it on sooner:
+  // the leg keeps the planned speed (rule 8(e) slackens speed only where that helps).
+  const std::vector<opp::Target> astern = {{3, {-1500, 0}, {10, 0}, {}}};
+  const opp::NodePlan ot = opp::plan_node(*planner, p, opp::build_setup(p, own, goal, astern, {}, 0), p.objective, {}, {}, {});
+  ASSERT_TRUE(ot.emergency) << ot.result.reason;
+  EXPECT_DOUBLE_EQ(ot.speed_fraction, 1.0) << ot.result.reason;
+  EXPECT_DOUBLE_EQ(ot.speeds[1], 5.0);
+  EXPECT_GT(ot.result.path[1].p.y, 0.0) << ot.result.reason;
   // Switched off: the no-path plan stands.
   EXPECT_FALSE(opp::plan_node(*planner, declared({"plan.max_iterations=1", "plan.emergency=false"}), s, p.objective, {}, {}, {})
                    .emergency);

@@ -47,6 +47,15 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     return out;
   }
   if (dot(d, v - w) <= 0.0) return out;  // the range opens along this leg: being cleared
+  if (e.obligation == Obligation::kCrossingStandOn) {  // 17(c): not to port for a ship on the port side
+    const double ref = e.course0 + (std::isnan(e.held_17c) ? 0.0 : e.held_17c);
+    const Vec2 along{std::cos(ref), std::sin(ref)};
+    const bool to_port = std::remainder(std::atan2(v.y, v.x) - ref, 2.0 * geo::kPi) < -p.port_tolerance;
+    const Vec2 rel = v - w;  // closing: dot(d, rel) > 0
+    const double miss = norm(d - (dot(d, rel) / dot(rel, rel)) * rel);
+    out.compliant = !(to_port && norm(d) <= p.port_turn_range && cross(along, d) < 0.0 && miss < p.port_turn_cpa);
+    return out;
+  }
   const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);
   switch (e.obligation) {
     case Obligation::kHeadOn: out.compliant = cross(v, d) < 0.0 && !port_turn; break;
@@ -57,7 +66,6 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     }
     case Obligation::kOvertaking:
     case Obligation::kOvertaken: out.compliant = !(dt <= 0.0); break;  // §5.3: not across its bow
-    case Obligation::kCrossingStandOn: out.compliant = !port_turn || norm(d) > p.port_turn_range; break;  // 17(c)
     default: break;  // kNone handled above
   }
   return out;

@@ -27,6 +27,7 @@ void EncounterMemoryParams::validate() const {
   need(head_on_sector > 0 && head_on_sector < geo::kPi / 2, "head_on_sector", "must be in (0, pi/2)");
   need(acted_turn > 0 && acted_turn < geo::kPi / 2, "acted_turn", "must be in (0, pi/2)");
   need(apparent_turn >= 0 && apparent_turn < geo::kPi, "apparent_turn", "must be in [0, pi)");
+  need(port_turn_range > 0, "port_turn_range", "must be > 0");
 }
 
 colreg::ColregParams EncounterMemoryParams::assessment() const {
@@ -51,6 +52,16 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
   std::vector<colreg::Assessment> as;  // all first, so that bad input leaves the memory unchanged
   for (const Target& t : targets) as.push_back(colreg::assess(own, {t.p.x, t.p.y, t.v.x, t.v.y}, cp));
   std::map<uint32_t, Entry> next;
+  // Rule 17(c): while a crossing ship closes on the port side within port_turn_range, a risk of
+  // collision (predicted CPA below cpa_risk), the most
+  // starboard course held is the one not to turn to port of (PinnedEncounter::held_17c).
+  auto follow_17c = [&](PinnedEncounter& e, const colreg::Assessment& a) {
+    if (e.obligation != Obligation::kCrossingStandOn || own.speed() <= 0.5 || !(a.cpa.tcpa > 0.0) ||
+        !(a.cpa.dcpa < p.cpa_risk) || a.cpa.range > p.port_turn_range || !(a.beta < 0.0))
+      return;
+    const double turned = std::remainder(own.course() - e.course0, 2.0 * geo::kPi);
+    e.held_17c = std::isnan(e.held_17c) ? turned : std::max(e.held_17c, turned);
+  };
   for (std::size_t i = 0; i < targets.size(); ++i) {
     Target& t = targets[i];
     const colreg::Assessment& a = as[i];
@@ -83,6 +94,7 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
         const double turned = either ? std::fabs(own_turn) : own_turn;
         if (own.speed() > 0.5 && turned > p.acted_turn) kept.e.acted = true;
         if (own.speed() > 0.5 && p.apparent_turn > 0.0 && turned >= p.apparent_turn) kept.e.completed = true;
+        follow_17c(kept.e, a);
         next[t.id] = kept;
         t.pinned = kept.e;
         continue;
@@ -92,6 +104,7 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
     const Obligation o = obligation_of(a.type);
     if (o != Obligation::kNone) {
       t.pinned = {o, own.course(), track_side(t.v, r), tk.course()};
+      follow_17c(t.pinned, a);
       next[t.id] = {t.pinned, a.cpa.range};
     }
   }

@@ -146,6 +146,7 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
   s.constraints.colreg_distance = std::max(s.constraints.colreg_distance, s.constraints.safety_distance);
   for (Target& t : pb.targets) t.margin += p.tracking_margin * s.constraints.safety_distance;
   s.constraints.colreg.port_turn_range = p.rule17c_range * s.constraints.safety_distance;
+  s.constraints.colreg.port_turn_cpa = p.encounter_cpa * s.constraints.safety_distance;
   s.budget = p.budget;
   s.budget.seed = static_cast<uint64_t>(p.seed) + plan_index;
   s.own = colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);
@@ -169,6 +170,7 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   ep.acted_turn = std::max(s.constraints.colreg.port_tolerance, geo::deg2rad(1.0));
   // Made once the own course is within a degree of the readily apparent alteration.
   ep.apparent_turn = std::max(0.0, s.constraints.colreg.apparent_turn - geo::deg2rad(1.0));
+  ep.port_turn_range = s.constraints.colreg.port_turn_range;
   return ep;
 }
 
@@ -318,38 +320,44 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
     out.speed_fraction = f;
   }
   if (out.result.status == Status::kNoPath && p.emergency) {
-    Result e = emergency_path(p, s, out.result.reason);
+    double f = p.min_speed_fraction;
+    Result e = emergency_path(p, s, out.result.reason, &f);
     if (!e.path.empty()) {
       out.result = std::move(e);
-      out.speeds.assign(out.result.path.size(), p.min_speed_fraction * s.problem.speed);
-      out.speed_fraction = p.min_speed_fraction;
+      out.speeds.assign(out.result.path.size(), f * s.problem.speed);
+      out.speed_fraction = f;
       out.emergency = true;
     }
   }
   return out;
 }
 
-Result emergency_path(const NodeParams& p, const Setup& s, const std::string& why) {
+Result emergency_path(const NodeParams& p, const Setup& s, const std::string& why, double* speed_fraction) {
   const Problem& pb = s.problem;
   const ValidityChecker vc(pb, s.constraints);
-  const double u = p.min_speed_fraction * pb.speed, len = std::max(s.constraints.safety_distance, 10.0 * u);
+  // Every candidate is judged over the same time: that of the reduced-speed leg of d_safety.
+  const double slow = p.min_speed_fraction * pb.speed, horizon = std::max(s.constraints.safety_distance, 10.0 * slow) / slow;
   const double course = s.own.speed() > 0.5 ? s.own.course() : pb.heading;
   const double turn = std::min(s.constraints.max_turn, geo::kPi / 2);
   Result best;
   double best_d = -1.0;
   for (const double a : {turn, turn / 2, 0.0, -turn / 2, -turn}) {
-    const Vec2 end = pb.start + len * Vec2{std::cos(course + a), std::sin(course + a)};
-    if (!vc.fixed_clear(pb.start, end, vc.fixed_distance(true))) continue;
-    double d = std::numeric_limits<double>::infinity();
-    const Vec2 vel = (u / len) * (end - pb.start);
-    for (const Target& t : pb.targets)
-      d = std::min(d, std::sqrt(geom::closest_approach(pb.start - t.p, vel - t.v, len / u).dist2));
-    if (d > 1.1 * best_d) {
+    // Rule 8(e): slacken speed first; the planned speed where that passes 10 % farther (being
+    // overtaken from astern, slowing down brings the overtaking ships on sooner: DNV 54).
+    for (const double f : {p.min_speed_fraction, 1.0}) {
+      const Vec2 vel = f * pb.speed * Vec2{std::cos(course + a), std::sin(course + a)};
+      const Vec2 end = pb.start + horizon * vel;
+      if (!vc.fixed_clear(pb.start, end, vc.fixed_distance(true))) continue;
+      double d = std::numeric_limits<double>::infinity();
+      for (const Target& t : pb.targets)
+        d = std::min(d, std::sqrt(geom::closest_approach(pb.start - t.p, vel - t.v, horizon).dist2));
+      if (!(d > 1.1 * best_d)) continue;
       best_d = d;
-      best.path = {{pb.start, 0.0}, {end, len / u}};
+      if (speed_fraction) *speed_fraction = f;
+      best.path = {{pb.start, 0.0}, {end, horizon}};
       best.reason = "emergency (rule 17(b)): no path at any speed (" + why + "); " +
-                    (a > 0 ? "turning to starboard " : (a < 0 ? "turning to port " : "holding course ")) + fmt(geo::rad2deg(std::fabs(a))) +
-                    " deg at " + fmt(100.0 * p.min_speed_fraction) + " % speed";
+                    (a > 0 ? "turning to starboard " : (a < 0 ? "turning to port " : "holding course ")) +
+                    fmt(geo::rad2deg(std::fabs(a))) + " deg at " + fmt(100.0 * f) + " % speed";
     }
   }
   best.status = best.path.empty() ? Status::kNoPath : Status::kRelaxed;

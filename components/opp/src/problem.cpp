@@ -37,6 +37,7 @@ void ConstraintParams::validate() const {
   require(fin(colreg.apparent_turn) && colreg.apparent_turn >= 0 && colreg.apparent_turn < kPi, "colreg.apparent_turn",
           "must be in [0, pi)");
   require(colreg.port_turn_range > 0, "colreg.port_turn_range", "must be > 0");
+  require(colreg.port_turn_cpa > 0, "colreg.port_turn_cpa", "must be > 0");
   require(fin(colreg_spacing) && colreg_spacing > 0, "colreg_spacing", "must be finite and > 0");
 }
 

@@ -3,6 +3,7 @@
 // geometry in mpgc/colreg/colreg.hpp; this predicate is the planner's own constraint.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "mpgc/colreg/colreg.hpp"
@@ -26,6 +27,9 @@ struct ColregParams {
   // may take once that ship is near: within this range a leg closing it may not turn to port of
   // course0; farther off a turn (made for another ship) is no such action.
   double port_turn_range = 1e300;                 // [m] (the node sets plan.rule17c_range x d_safety)
+  // ... and only a leg on which the ship would pass closer than this is a turn "for" it (a port
+  // leg passing it 3 km off is no risk of collision: DNV 30).
+  double port_turn_cpa = 1e300;                   // [m] (the node sets plan.encounter_cpa x d_safety)
 };
 
 // The situation of one leg in the project's one encounter vocabulary (colreg::EncounterType):
@@ -77,6 +81,13 @@ struct PinnedEncounter {
   // band is lifted (the evaluation's rule 8(b) asks the largest alteration to be readily
   // apparent, not every leg: an overtaking ship may then run parallel while it passes).
   bool completed = false;
+  // Rule 17(c) for a crossing stand-on target: the most starboard own course, relative to course0,
+  // held while the target was within port_turn_range on the own port side and closing (NaN before).
+  // A closing leg may not turn to port of course0 + held_17c while the target is on the port side
+  // of that course: turning back toward it after a starboard alteration made for another ship is
+  // altering course to port for it (DNV 27, 30: the return to the route with the crossing ship 2.4
+  // km on the port beam). Not kept across a restart.
+  double held_17c = std::nan("");
 };
 
 // Side of the target's track (velocity w) that the own ship (at r from the target) is on: +1, -1,
@@ -92,8 +103,9 @@ inline bool across_astern(const PinnedEncounter& e, Vec2 w, Vec2 r) {
 
 // One leg (own at x0 with velocity v, target at y0 with velocity w, same time) against a pinned
 // obligation. A leg on which the range opens is clear. Otherwise head-on: the target on the port
-// side (eq. 19) and no alteration to port of course0 beyond port_tolerance; crossing stand-on: no
-// alteration to port of course0 beyond port_tolerance (rule 17(c)); give-way: no
+// side (eq. 19) and no alteration to port of course0 beyond port_tolerance; crossing stand-on,
+// within port_turn_range: no alteration to port of course0 + held_17c beyond port_tolerance while
+// the target is on the port side of that course (rule 17(c)); give-way: no
 // alteration to port, and where the routes meet ahead of both (eq. 13-14) the target reaches x_c
 // first (eq. 15), until the own ship is across the target's track astern of it; overtaking: the
 // target first at x_c (§5.3).

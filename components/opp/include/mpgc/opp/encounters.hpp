@@ -36,6 +36,9 @@ struct EncounterMemoryParams {
   double acted_turn = 0.08726646259971647;  // [rad] 5 deg
   // ... and this far (colreg's apparent_turn) as made (PinnedEncounter::completed); 0: never.
   double apparent_turn = 0.5235987755982988;  // [rad] 30 deg
+  // Range within which a crossing stand-on target's rule 17(c) reference (PinnedEncounter::held_17c)
+  // follows the own course (colreg's port_turn_range).
+  double port_turn_range = 1e300;  // [m]
   // Throws std::invalid_argument naming the first bad field.
   void validate() const;
   // The risk-of-collision assessment these parameters describe (any range: tcpa_max bounds it).

@@ -172,13 +172,15 @@ struct NodePlan {
 NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const ObjectiveParams& objective,
                    const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks);
 
-// Rule 17(b) / 2(b), when nothing can be planned: one leg of d_safety at min_speed_fraction of the
-// planned speed, on the course among own course + {max_turn, max_turn/2, 0, -max_turn/2,
-// -max_turn} (starboard first) that keeps clear of fixed obstacles (as far as the start is) and
-// passes farthest from the targets (eq. 3), a starboard one kept unless a later one passes 10 %
-// farther. Status kRelaxed, not compliant, the reason starting "emergency". Empty path when every
-// course meets a fixed obstacle.
-Result emergency_path(const NodeParams& p, const Setup& s, const std::string& why);
+// Rule 17(b) / 2(b), when nothing can be planned: one leg, for the time a leg of d_safety takes at
+// min_speed_fraction of the planned speed, on the course among own course + {max_turn,
+// max_turn/2, 0, -max_turn/2, -max_turn} (starboard first) and at min_speed_fraction or the
+// planned speed (reduced first, rule 8(e)), that keeps clear of fixed obstacles (as far as the
+// start is) and passes farthest from the targets (eq. 3) within that time; an earlier candidate
+// is kept unless a later one passes 10 % farther. Its speed fraction goes to `speed_fraction`.
+// Status kRelaxed, not compliant, the reason starting "emergency". Empty path when every course
+// meets a fixed obstacle.
+Result emergency_path(const NodeParams& p, const Setup& s, const std::string& why, double* speed_fraction = nullptr);
 
 // One target as the planner reports it (plan/encounters): rule 13-15 assessment and bearing.
 struct EncounterReport {
