@@ -156,6 +156,35 @@ TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), y, w, {}, kP));
 }
 
+// Rule 14(a): within act_range, a head-on leg that would pass within risk_cpa has altered to
+// starboard by head_on_turn; holding course is enough only farther off or passing wider. Rule
+// 8(b): a speed halved from the encounter's start is readily apparent at any course.
+TEST(ColregPinned, AHeadOnShipNearAltersToStarboard) {
+  const opp::Vec2 w{-6, 0}, y{1500, -150};  // head-on, 150 m to port, 1.5 km off
+  auto ho = pinned(opp::Obligation::kHeadOn);
+  ho.speed0 = 6.0;
+  opp::ColregParams p = kP;
+  p.risk_cpa = 200.0;
+  p.act_range = 2000.0;
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, kNorth, y, w, ho, p));  // holding: would pass 150 m off
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, ho, p));
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(-3), y, w, ho, p));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, kNorth, {3000, -150}, w, ho, p));  // beyond act_range
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, kNorth, {1500, -400}, w, ho, p));  // passing 400 m off
+  // Halved speed: a 15 deg starboard turn is readily apparent; holding course at half speed is still
+  // no alteration of course (rule 14).
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15), y, w, ho, p));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(15, 2.9), y, w, ho, p));
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(0, 2.9), y, w, ho, p));
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15, 3.5), y, w, ho, p));
+  p.apparent_slowdown = 0.0;
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15, 2.9), y, w, ho, p));
+  // An alteration made and given up near the ship: back on the meeting course, refused again.
+  ho.acted = ho.completed = true;
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, kNorth, y, w, ho, p));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(15), y, w, ho, p));
+}
+
 // Rule 17(c): a crossing stand-on pinned: when the own ship acts, not to port for a ship on its
 // port side; to starboard by a readily apparent amount.
 TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
@@ -191,11 +220,11 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(0), beam, wne, held, near).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(38), beam, wne, held, near).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(20), {1000, 2000}, {-5, -5}, held, near).compliant);
-  // A port leg that passes it farther than port_turn_cpa (380 m here) is no turn for it.
+  // A port leg that passes it farther than risk_cpa (380 m here) is no turn for it.
   auto wide = near;
-  wide.port_turn_cpa = 300.0;
+  wide.risk_cpa = 300.0;
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
-  wide.port_turn_cpa = 500.0;
+  wide.risk_cpa = 500.0;
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));

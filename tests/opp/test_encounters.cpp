@@ -131,6 +131,11 @@ TEST(EncounterMemory, ATargetTurningAsTheRulesAskKeepsTheEncounter) {
   std::vector<opp::Target> made{target(1, 6000, -500, 180 + 35)};
   mem.update(params(), own_at(700, 150, 31), made);  // 31 deg: the readily apparent alteration is made
   EXPECT_TRUE(made[0].pinned.completed);
+  // Given up: back on course0 with the head-on ship still on a collision course, it is to be made again.
+  std::vector<opp::Target> back{target(1, 5500, 1700, 180 + 35)};  // CPA 11 m in 422 s
+  mem.update(params(), own_at(900, 150, 2), back);
+  EXPECT_FALSE(back[0].pinned.completed);
+  EXPECT_TRUE(back[0].pinned.acted);
   opp::EncounterMemory mem2;
   std::vector<opp::Target> t0{target(1, 8000, -200, 180)};
   mem2.update(params(), own_at(0, 0, 0), t0);

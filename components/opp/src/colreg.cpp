@@ -18,6 +18,10 @@ double arrival_difference(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, double c, const Colr
   return (s > 0.0 && q > 0.0) ? s - q : std::nan("");
 }
 
+// Distance at the closest approach of a target at d from the own ship, closing at relative
+// velocity rel (own minus target; dot(d, rel) > 0).
+double miss_distance(Vec2 d, Vec2 rel) { return norm(d - (dot(d, rel) / dot(rel, rel)) * rel); }
+
 }  // namespace
 
 bool pinnable(Obligation o) {
@@ -51,9 +55,7 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     const double ref = e.course0 + (std::isnan(e.held_17c) ? 0.0 : e.held_17c);
     const Vec2 along{std::cos(ref), std::sin(ref)};
     const bool to_port = std::remainder(std::atan2(v.y, v.x) - ref, 2.0 * geo::kPi) < -p.port_tolerance;
-    const Vec2 rel = v - w;  // closing: dot(d, rel) > 0
-    const double miss = norm(d - (dot(d, rel) / dot(rel, rel)) * rel);
-    out.compliant = !(to_port && norm(d) <= p.port_turn_range && cross(along, d) < 0.0 && miss < p.port_turn_cpa);
+    out.compliant = !(to_port && norm(d) <= p.port_turn_range && cross(along, d) < 0.0 && miss_distance(d, v - w) < p.risk_cpa);
     return out;
   }
   const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);
@@ -72,10 +74,17 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
 }
 
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
-  if (!(p.apparent_turn > p.port_tolerance) || e.obligation == Obligation::kNone || e.completed) return true;
+  if (e.obligation == Obligation::kNone) return true;
   if (norm(v) < p.min_speed || dot(y0 - x0, v - w) <= 0.0) return true;  // not closing: no action owed
   if (e.obligation == Obligation::kCrossingGiveWay && across_astern(e, w, x0 - y0)) return true;
   const double turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi);
+  // Rule 14 also after an alteration was made: coming back to the meeting course near the ship is
+  // meeting it again (Annapolis: 31 deg to starboard and back within a minute, 2.9 km off).
+  if (e.obligation == Obligation::kHeadOn && turn < p.head_on_turn && norm(y0 - x0) <= p.act_range &&
+      miss_distance(y0 - x0, v - w) < p.risk_cpa)
+    return false;
+  if (!(p.apparent_turn > p.port_tolerance) || e.completed) return true;
+  if (p.apparent_slowdown > 0.0 && norm(v) <= (1.0 - p.apparent_slowdown) * e.speed0) return true;
   const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
   const double a = either ? std::fabs(turn) : turn;
   if (e.acted) return a >= p.apparent_turn;

@@ -94,6 +94,11 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
         const double turned = either ? std::fabs(own_turn) : own_turn;
         if (own.speed() > 0.5 && turned > p.acted_turn) kept.e.acted = true;
         if (own.speed() > 0.5 && p.apparent_turn > 0.0 && turned >= p.apparent_turn) kept.e.completed = true;
+        // An alteration given up while the risk of collision remains was not made: back on course0
+        // with the CPA still inside cpa_risk, it is to be made again (Annapolis: 33 deg to starboard
+        // and back within a minute, 2.9 km from a head-on ship later passed at 190 m after 17 deg).
+        if (kept.e.completed && own.speed() > 0.5 && turned < p.acted_turn && a.cpa.tcpa > 0.0 && a.cpa.dcpa < p.cpa_risk)
+          kept.e.completed = false;
         follow_17c(kept.e, a);
         next[t.id] = kept;
         t.pinned = kept.e;
@@ -104,6 +109,7 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
     const Obligation o = obligation_of(a.type);
     if (o != Obligation::kNone) {
       t.pinned = {o, own.course(), track_side(t.v, r), tk.course()};
+      t.pinned.speed0 = own.speed();
       follow_17c(t.pinned, a);
       next[t.id] = {t.pinned, a.cpa.range};
     }

@@ -37,6 +37,11 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
   ps.add("plan.apparent_turn", &c.colreg.apparent_turn, geo::deg2rad(30.0), "rad", 0.0, 3.1,
          "rule 8(b): while closing a pinned give-way / head-on / overtaking target, hold the pinned course or alter "
          "by at least this (0: any alteration)");
+  ps.add("plan.head_on_turn", &c.colreg.head_on_turn, geo::deg2rad(10.0), "rad", 0.0, 1.5,
+         "rule 14(a): within d_COLREG of a pinned head-on target, a leg that would pass it within plan.encounter_cpa x "
+         "d_safety is altered to starboard by at least this");
+  ps.add("plan.apparent_slowdown", &c.colreg.apparent_slowdown, 0.5, "-", 0.0, 0.99,
+         "rule 8(b): a leg this much slower than the speed an encounter began at is a readily apparent action (0: never)");
   ps.add("plan.escape_start", &c.escape_start, true,
          "start within d_safety (target moved in): still plan; the first leg may not get closer (else INVALID_INPUT)");
   ps.add("plan.gamma_s", &o.gamma_s, 500.0, "m/rad^2", 0.0, 1e9, "weight of the steering cost (eq. 6)");
@@ -146,7 +151,8 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
   s.constraints.colreg_distance = std::max(s.constraints.colreg_distance, s.constraints.safety_distance);
   for (Target& t : pb.targets) t.margin += p.tracking_margin * s.constraints.safety_distance;
   s.constraints.colreg.port_turn_range = p.rule17c_range * s.constraints.safety_distance;
-  s.constraints.colreg.port_turn_cpa = p.encounter_cpa * s.constraints.safety_distance;
+  s.constraints.colreg.risk_cpa = p.encounter_cpa * s.constraints.safety_distance;
+  s.constraints.colreg.act_range = s.constraints.colreg_distance;
   s.budget = p.budget;
   s.budget.seed = static_cast<uint64_t>(p.seed) + plan_index;
   s.own = colreg::ShipKinematics::from_course(pb.start.x, pb.start.y, cog, sog, own.heading);

@@ -37,7 +37,12 @@ void ConstraintParams::validate() const {
   require(fin(colreg.apparent_turn) && colreg.apparent_turn >= 0 && colreg.apparent_turn < kPi, "colreg.apparent_turn",
           "must be in [0, pi)");
   require(colreg.port_turn_range > 0, "colreg.port_turn_range", "must be > 0");
-  require(colreg.port_turn_cpa > 0, "colreg.port_turn_cpa", "must be > 0");
+  require(colreg.risk_cpa > 0, "colreg.risk_cpa", "must be > 0");
+  require(colreg.act_range >= 0, "colreg.act_range", "must be >= 0");
+  require(fin(colreg.head_on_turn) && colreg.head_on_turn >= 0 && colreg.head_on_turn < kPi / 2, "colreg.head_on_turn",
+          "must be in [0, pi/2)");
+  require(fin(colreg.apparent_slowdown) && colreg.apparent_slowdown >= 0 && colreg.apparent_slowdown < 1,
+          "colreg.apparent_slowdown", "must be in [0, 1)");
   require(fin(colreg_spacing) && colreg_spacing > 0, "colreg_spacing", "must be finite and > 0");
 }
 

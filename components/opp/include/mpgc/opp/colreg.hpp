@@ -27,9 +27,18 @@ struct ColregParams {
   // may take once that ship is near: within this range a leg closing it may not turn to port of
   // course0; farther off a turn (made for another ship) is no such action.
   double port_turn_range = 1e300;                 // [m] (the node sets plan.rule17c_range x d_safety)
-  // ... and only a leg on which the ship would pass closer than this is a turn "for" it (a port
-  // leg passing it 3 km off is no risk of collision: DNV 30).
-  double port_turn_cpa = 1e300;                   // [m] (the node sets plan.encounter_cpa x d_safety)
+  // A leg that would pass a target closer than this is a risk of collision to it: only such a
+  // port leg is a 17(c) turn "for" it (one passing it 3 km off is not: DNV 30), and only such a
+  // head-on leg must have altered (head_on_turn).
+  double risk_cpa = 1e300;                        // [m] (the node sets plan.encounter_cpa x d_safety)
+  // Rule 14(a), "each shall alter her course to starboard": within act_range of a pinned head-on
+  // target, a closing leg that would pass it within risk_cpa is altered to starboard of course0 by
+  // at least head_on_turn, not held (Annapolis: the course held to a 109 m passing, 100 m d_safety).
+  double act_range = 0.0;                         // [m] (the node sets d_COLREG; 0: not required)
+  double head_on_turn = 0.17453292519943295;      // [rad] 10 deg, the NTNU evaluator's theta_sm_lim
+  // Rule 8(b): "alteration of course and/or speed": a leg at most (1 - apparent_slowdown) of the
+  // speed the encounter began at is a readily apparent action whatever its course (0: never).
+  double apparent_slowdown = 0.5;                 // [-] the NTNU evaluator's speed reduction
 };
 
 // The situation of one leg in the project's one encounter vocabulary (colreg::EncounterType):
@@ -79,8 +88,11 @@ struct PinnedEncounter {
   bool acted = false;
   // ... and once the own course has been altered by apparent_turn, the alteration is made: the
   // band is lifted (the evaluation's rule 8(b) asks the largest alteration to be readily
-  // apparent, not every leg: an overtaking ship may then run parallel while it passes).
+  // apparent, not every leg: an overtaking ship may then run parallel while it passes). Back
+  // within acted_turn of course0 while the risk of collision remains, it was given up, not made:
+  // completed is cleared (acted stays).
   bool completed = false;
+  double speed0 = std::nan("");  // [m/s] own speed over ground when the situation was fixed (not kept across a restart)
   // Rule 17(c) for a crossing stand-on target: the most starboard own course, relative to course0,
   // held while the target was within port_turn_range on the own port side and closing (NaN before).
   // A closing leg may not turn to port of course0 + held_17c while the target is on the port side
@@ -114,8 +126,10 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
 // Rule 8(b) for a leg against a pinned obligation (the full COLREG level only: the first
 // relaxation drops it, "if the circumstances of the case admit"): false when the range closes
 // along the leg and its course is altered from course0 by more than port_tolerance but less than
-// apparent_turn (to starboard; to either side when overtaking or overtaken). A give-way leg
-// already across the target's track astern is free.
+// apparent_turn (to starboard; to either side when overtaking or overtaken), unless its speed is
+// reduced by apparent_slowdown from speed0. A give-way leg already across the target's track
+// astern is free. With it, rule 14(a): a closing head-on leg within act_range that would pass
+// within risk_cpa has altered to starboard by head_on_turn at least (at any speed).
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
 
 }  // namespace mpgc::opp
