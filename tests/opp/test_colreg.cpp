@@ -226,6 +226,10 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
   wide.risk_cpa = 500.0;
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
+  // ... unless the ship is a risk of collision now (on the course held): then any closing port leg is.
+  held.at_risk_17c = true;
+  wide.risk_cpa = 300.0;
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(35), y, w, so, kP));

@@ -165,6 +165,8 @@ TEST(EncounterMemory, TheRule17cReferenceIsTheMostStarboardCourseHeldNearTheShip
   std::vector<opp::Target> near{target(3, 4000, -2400, 90)};
   mem.update(p, own_at(1000, 0, 35), near);  // altered 35 deg to starboard for another ship
   EXPECT_NEAR(near[0].pinned.held_17c, 35 * kDeg, 1e-9);
+  EXPECT_TRUE(near[0].pinned.at_risk_17c);
+  EXPECT_FALSE(far[0].pinned.at_risk_17c);
   std::vector<opp::Target> back{target(3, 4000, -2000, 90)};
   mem.update(p, own_at(1200, 150, 10), back);  // coming back: the reference stays
   EXPECT_NEAR(back[0].pinned.held_17c, 35 * kDeg, 1e-9);

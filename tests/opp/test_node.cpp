@@ -269,6 +269,18 @@ TEST(OppNode, AStandOnShipHoldsCourseAndSpeedUntilItMayAct) {
   // A ship crossing from starboard (own ship gives way) is no reason to hold.
   opp::Setup gw = opp::build_setup(p, own, goal, {{5, {10000, 8000}, {0, -4}, {}}}, {}, 0);
   EXPECT_EQ(opp::stand_on_hold(p, gw).time, 0.0);
+  // Pinned stand-on and no risk any more: held until its CPA if it has acted (turned 90 deg to
+  // starboard, passing 2.5 km off), not if the risk went because the own ship altered for others
+  // while the other held on (DNV 40: the own ship heading 30 deg, the ship on the port bow east).
+  opp::Target acted{3, {10000, -2500}, {-4, 0}, {}};
+  acted.pinned = {opp::Obligation::kCrossingStandOn, 0.0, 0, 1.5707963267948966};  // it was heading east
+  opp::Setup after = opp::build_setup(p, own, goal, {acted}, {}, 0);
+  after.problem.targets[0].pinned = acted.pinned;
+  EXPECT_GT(opp::stand_on_hold(p, after).time, 0.0);
+  opp::Target held_on{3, {10000, -6000}, {0, 4}, {}};  // CPA 2.4 km in 2490 s: no risk
+  opp::Setup diverted = opp::build_setup(p, {{0, 0}, 0.52, 5.0, 0.52, 0.0}, goal, {held_on}, {}, 0);
+  diverted.problem.targets[0].pinned = acted.pinned;
+  EXPECT_EQ(opp::stand_on_hold(p, diverted).time, 0.0);
 }
 
 // Seed 000 §2: the speed is reduced when steering alone is not sufficient. In a canal too narrow

@@ -55,7 +55,8 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     const double ref = e.course0 + (std::isnan(e.held_17c) ? 0.0 : e.held_17c);
     const Vec2 along{std::cos(ref), std::sin(ref)};
     const bool to_port = std::remainder(std::atan2(v.y, v.x) - ref, 2.0 * geo::kPi) < -p.port_tolerance;
-    out.compliant = !(to_port && norm(d) <= p.port_turn_range && cross(along, d) < 0.0 && miss_distance(d, v - w) < p.risk_cpa);
+    out.compliant = !(to_port && norm(d) <= p.port_turn_range && cross(along, d) < 0.0 &&
+                      (e.at_risk_17c || miss_distance(d, v - w) < p.risk_cpa));
     return out;
   }
   const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);

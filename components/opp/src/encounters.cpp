@@ -56,9 +56,9 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
   // collision (predicted CPA below cpa_risk), the most
   // starboard course held is the one not to turn to port of (PinnedEncounter::held_17c).
   auto follow_17c = [&](PinnedEncounter& e, const colreg::Assessment& a) {
-    if (e.obligation != Obligation::kCrossingStandOn || own.speed() <= 0.5 || !(a.cpa.tcpa > 0.0) ||
-        !(a.cpa.dcpa < p.cpa_risk) || a.cpa.range > p.port_turn_range || !(a.beta < 0.0))
-      return;
+    e.at_risk_17c = e.obligation == Obligation::kCrossingStandOn && own.speed() > 0.5 && a.cpa.tcpa > 0.0 &&
+                    a.cpa.dcpa < p.cpa_risk && a.cpa.range <= p.port_turn_range && a.beta < 0.0;
+    if (!e.at_risk_17c) return;
     const double turned = std::remainder(own.course() - e.course0, 2.0 * geo::kPi);
     e.held_17c = std::isnan(e.held_17c) ? turned : std::max(e.held_17c, turned);
   };

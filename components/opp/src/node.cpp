@@ -184,7 +184,9 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, const std::option
   StandOnHold h;
   const Problem& pb = s.problem;
   if (!pb.colreg || !(p.stand_on_range > 0.0) || s.own.speed() < 0.5) return h;
-  const colreg::ColregParams cp = encounter_params(p, s).assessment();
+  const EncounterMemoryParams ep = encounter_params(p, s);
+  const colreg::ColregParams cp = ep.assessment();
+  const double acted = ep.acted_turn;  // [rad] a target's course change that shows it acted
   const double reach = p.stand_on_range * s.constraints.safety_distance;
   const bool again = previous && previous->time > 0.0 && std::isfinite(previous->course);
   h.course = again ? previous->course : s.own.course();
@@ -205,6 +207,11 @@ StandOnHold stand_on_hold(const NodeParams& p, const Setup& s, const std::option
     if (pinned_so && !a.risk) {
       // The give-way ship has acted: keep course and speed until it is past (17(a)(i) lasts while
       // the other keeps out of the way; the memory releases the target once passed and clear).
+      // No risk because the own ship has altered for others while the other held on is no such
+      // case: nothing to hold for (DNV 40 held a 28 deg diversion 1000 s for a ship 3.5 km off
+      // that never turned, and did not reach the goal).
+      const double its_turn = std::remainder(std::atan2(t.v.y, t.v.x) - t.pinned.target_course, 2.0 * geo::kPi);
+      if (!(norm(t.v) > 0.5 && std::fabs(its_turn) > acted)) continue;
       if (a.cpa.tcpa > 0.0 && a.cpa.tcpa < t_hold) {
         t_hold = a.cpa.tcpa;
         h.target = t.id;

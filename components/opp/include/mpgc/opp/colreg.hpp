@@ -100,6 +100,11 @@ struct PinnedEncounter {
   // altering course to port for it (DNV 27, 30: the return to the route with the crossing ship 2.4
   // km on the port beam). Not kept across a restart.
   double held_17c = std::nan("");
+  // ... and it is such a risk now (at the plan's start): then every closing leg to port of that
+  // course is a turn for it, however far that leg would pass it (the evaluation judges a turn by
+  // the risk before it: DNV 40 turned 50 deg to port to pass astern of a crossing ship 1.3 km on
+  // the port bow, predicted CPA 1.2 km in 45 s, on a leg that itself would pass it wider).
+  bool at_risk_17c = false;
 };
 
 // Side of the target's track (velocity w) that the own ship (at r from the target) is on: +1, -1,
