@@ -1,6 +1,7 @@
 #include "mpgc/opp/colreg.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "mpgc/geo/angles.hpp"
 
@@ -18,9 +19,11 @@ double arrival_difference(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, double c, const Colr
   return (s > 0.0 && q > 0.0) ? s - q : std::nan("");
 }
 
-// Distance at the closest approach of a target at d from the own ship, closing at relative
-// velocity rel (own minus target; dot(d, rel) > 0).
-double miss_distance(Vec2 d, Vec2 rel) { return norm(d - (dot(d, rel) / dot(rel, rel)) * rel); }
+// Distance at the closest approach, on present courses, of a target at y0 (velocity w) to the own
+// ship at x0 (velocity v).
+double miss_distance(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w) {
+  return std::sqrt(geom::closest_approach(x0 - y0, v - w, std::numeric_limits<double>::infinity()).dist2);
+}
 
 }  // namespace
 
@@ -56,7 +59,7 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     const Vec2 along{std::cos(ref), std::sin(ref)};
     const bool to_port = std::remainder(std::atan2(v.y, v.x) - ref, 2.0 * geo::kPi) < -p.port_tolerance;
     out.compliant = !(to_port && norm(d) <= p.port_turn_range && cross(along, d) < 0.0 &&
-                      (e.at_risk_17c || miss_distance(d, v - w) < p.risk_cpa));
+                      (e.at_risk_17c || miss_distance(x0, v, y0, w) < p.risk_cpa));
     return out;
   }
   const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);
@@ -82,7 +85,7 @@ bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncount
   // Rule 14 also after an alteration was made: coming back to the meeting course near the ship is
   // meeting it again (Annapolis: 31 deg to starboard and back within a minute, 2.9 km off).
   if (e.obligation == Obligation::kHeadOn && turn < p.head_on_turn && norm(y0 - x0) <= p.act_range &&
-      miss_distance(y0 - x0, v - w) < p.risk_cpa)
+      miss_distance(x0, v, y0, w) < p.risk_cpa)
     return false;
   if (!(p.apparent_turn > p.port_tolerance) || e.completed) return true;
   if (p.apparent_slowdown > 0.0 && norm(v) <= (1.0 - p.apparent_slowdown) * e.speed0) return true;

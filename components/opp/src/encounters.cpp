@@ -52,9 +52,9 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
   std::vector<colreg::Assessment> as;  // all first, so that bad input leaves the memory unchanged
   for (const Target& t : targets) as.push_back(colreg::assess(own, {t.p.x, t.p.y, t.v.x, t.v.y}, cp));
   std::map<uint32_t, Entry> next;
-  // Rule 17(c): while a crossing ship closes on the port side within port_turn_range, a risk of
-  // collision (predicted CPA below cpa_risk), the most
-  // starboard course held is the one not to turn to port of (PinnedEncounter::held_17c).
+  // Rule 17(c): while a crossing ship closes on the port side within port_turn_range with a risk
+  // of collision (predicted CPA below cpa_risk), the most starboard course held is the one not to
+  // turn to port of (PinnedEncounter::held_17c).
   auto follow_17c = [&](PinnedEncounter& e, const colreg::Assessment& a) {
     e.at_risk_17c = e.obligation == Obligation::kCrossingStandOn && own.speed() > 0.5 && a.cpa.tcpa > 0.0 &&
                     a.cpa.dcpa < p.cpa_risk && a.cpa.range <= p.port_turn_range && a.beta < 0.0;
