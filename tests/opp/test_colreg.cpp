@@ -205,6 +205,15 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   const opp::Vec2 bow{866, -500}, w5{5, 0};
   ASSERT_LE(opp::dot(bow, heading(-75) - w5), 0.0);  // not closing
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so, near).compliant);
+  // ... if the leg passes it within risk_cpa (here the 1 km it is off), or it is a risk now.
+  auto bow_wide = near;
+  bow_wide.risk_cpa = 900.0;
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so, bow_wide).compliant);
+  auto so_risk = so;
+  so_risk.at_risk_17c = true;
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so_risk, bow_wide).compliant);
+  bow_wide.risk_cpa = 1100.0;
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so, bow_wide).compliant);
   // Crossed ahead to the starboard bow, or abaft the beam, it is passed: a port leg goes astern of it.
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), {866, 500}, {0, 7}, so, near).compliant);
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30), {-900, -300}, {0, 0.5}, so, near).compliant);

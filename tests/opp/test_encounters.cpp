@@ -178,6 +178,19 @@ TEST(EncounterMemory, TheRule17cReferenceIsTheMostStarboardCourseHeldNearTheShip
   std::vector<opp::Target> near2{target(3, 4000, -2400, 90)};
   mem2.update(p, own_at(1000, 0, 35), near2);
   EXPECT_TRUE(std::isnan(near2[0].pinned.held_17c));
+  // Within the range but converging slowly (CPA 260 m in 1480 s, beyond the 830 s the own ship
+  // takes to sail port_turn_range): not yet; once the CPA is that near in time, it does.
+  p.cpa_risk = 1000;
+  opp::EncounterMemory mem3;
+  std::vector<opp::Target> slow{target(3, 4000, -2400, 60)};
+  mem3.update(p, own_at(1000, 0, 35), slow);
+  ASSERT_EQ(slow[0].pinned.obligation, opp::Obligation::kCrossingStandOn);
+  EXPECT_FALSE(slow[0].pinned.at_risk_17c);
+  EXPECT_TRUE(std::isnan(slow[0].pinned.held_17c));
+  std::vector<opp::Target> later{target(3, 4000 + 6 * std::cos(60 * kDeg) * 700, -2400 + 6 * std::sin(60 * kDeg) * 700, 60)};
+  mem3.update(p, own_at(1000 + 6 * std::cos(35 * kDeg) * 700, 6 * std::sin(35 * kDeg) * 700, 35), later);
+  EXPECT_TRUE(later[0].pinned.at_risk_17c);
+  EXPECT_NEAR(later[0].pinned.held_17c, 0.0, 1e-9);
   p.port_turn_range = 0;
   EXPECT_THROW(mem.update(p, own_at(1200, 150, 10), back), std::invalid_argument);
 }

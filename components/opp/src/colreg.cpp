@@ -46,10 +46,12 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
   const bool port_turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi) < -p.port_tolerance;
   // Rule 17(c) forbids turning toward the crossing ship while it is still on the port bow of the
   // course held (ahead of the beam, to port), even on a leg along which the range does not close
-  // (DNV 12: a port turn round the ship's bow at d_safety, the range constant).
+  // (DNV 12: a port turn round the ship's bow at d_safety, the range constant), if it is a risk now
+  // or the leg passes it within risk_cpa: a leg back to the route that passes a ship 16 km off
+  // wider than that is no action for it (paper s1_unexpected).
   const Vec2 ahead{std::cos(e.course0), std::sin(e.course0)};
   if (e.obligation == Obligation::kCrossingStandOn && port_turn && norm(d) <= p.port_turn_range && dot(d, ahead) > 0.0 &&
-      cross(ahead, d) < 0.0) {
+      cross(ahead, d) < 0.0 && (e.at_risk_17c || miss_distance(x0, v, y0, w) < p.risk_cpa)) {
     out.compliant = false;
     return out;
   }

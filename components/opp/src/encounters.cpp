@@ -54,10 +54,15 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
   std::map<uint32_t, Entry> next;
   // Rule 17(c): while a crossing ship closes on the port side within port_turn_range with a risk
   // of collision (predicted CPA below cpa_risk), the most starboard course held is the one not to
-  // turn to port of (PinnedEncounter::held_17c).
+  // turn to port of (PinnedEncounter::held_17c). Like the stand-on's stage 3 (rule 17(a)(ii)) the
+  // range is a time too: the CPA nearer than the own ship takes to sail it. A ship converging
+  // slowly on the port beam, CPA an hour ahead, is no reason to give up the route yet (paper
+  // s1_unexpected held a 99 deg give-way course for 3000 s for one 15 km off, CPA in 3000 s).
   auto follow_17c = [&](PinnedEncounter& e, const colreg::Assessment& a) {
+    const double u = std::isfinite(e.speed0) && e.speed0 > 0.5 ? e.speed0 : own.speed();
     e.at_risk_17c = e.obligation == Obligation::kCrossingStandOn && own.speed() > 0.5 && a.cpa.tcpa > 0.0 &&
-                    a.cpa.dcpa < p.cpa_risk && a.cpa.range <= p.port_turn_range && a.beta < 0.0;
+                    a.cpa.dcpa < p.cpa_risk && a.cpa.range <= p.port_turn_range && a.beta < 0.0 &&
+                    a.cpa.tcpa < p.port_turn_range / u;
     if (!e.at_risk_17c) return;
     const double turned = std::remainder(own.course() - e.course0, 2.0 * geo::kPi);
     e.held_17c = std::isnan(e.held_17c) ? turned : std::max(e.held_17c, turned);
