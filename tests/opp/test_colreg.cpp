@@ -205,9 +205,10 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   const opp::Vec2 bow{866, -500}, w5{5, 0};
   ASSERT_LE(opp::dot(bow, heading(-75) - w5), 0.0);  // not closing
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so, near).compliant);
-  // ... if the leg passes it within risk_cpa (here the 1 km it is off), or it is a risk now.
+  // ... if the leg passes it within risk_cpa (here the 1 km it is off), or it is a risk now
+  // (or on the course held: its CPA there is 500 m).
   auto bow_wide = near;
-  bow_wide.risk_cpa = 900.0;
+  bow_wide.risk_cpa = 450.0;
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-75), bow, w5, so, bow_wide).compliant);
   auto so_risk = so;
   so_risk.at_risk_17c = true;
@@ -239,6 +240,26 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   held.at_risk_17c = true;
   wide.risk_cpa = 300.0;
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(20), beam, wne, held, wide).compliant);
+  // A port leg on which the range opens is judged as begun port_turn_lead earlier on the course
+  // held, where the guidance starts the turn: 500 m on the port beam, opening at 6 m/s to the
+  // west, a 45 deg port leg is clear where it begins but not 300 m earlier (the range then still
+  // closing along it); 1200 m off it is clear from there too.
+  const opp::Vec2 west{0, -6};
+  auto lead = near;
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-45), {0, -500}, west, so, lead).compliant);
+  lead.port_turn_lead = 300.0;
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-45), {0, -500}, west, so, lead).compliant);
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-45), {0, -1200}, west, so, lead).compliant);
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(10), {0, -500}, west, so, lead).compliant);  // not to port
+  // A port leg that opens the range is still a turn for a ship at risk on the course held (its
+  // CPA ahead within risk_cpa): 2 km ahead, 100 m to port, crossing to starboard at 5 m/s.
+  auto ahead_risk = near;
+  ahead_risk.risk_cpa = 1300.0;
+  const opp::Vec2 crossing{2000, -100}, east5{0, 5};
+  ASSERT_LE(opp::dot(crossing, heading(-100) - east5), 0.0);  // opening along the port leg
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-100), crossing, east5, so, ahead_risk).compliant);
+  ahead_risk.risk_cpa = 300.0;  // its CPA on the course held, 1.2 km, is no risk then
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-100), crossing, east5, so, ahead_risk).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(35), y, w, so, kP));

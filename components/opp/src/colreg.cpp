@@ -55,15 +55,25 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     out.compliant = false;
     return out;
   }
-  if (dot(d, v - w) <= 0.0) return out;  // the range opens along this leg: being cleared
   if (e.obligation == Obligation::kCrossingStandOn) {  // 17(c): not to port for a ship on the port side
     const double ref = e.course0 + (std::isnan(e.held_17c) ? 0.0 : e.held_17c);
     const Vec2 along{std::cos(ref), std::sin(ref)};
     const bool to_port = std::remainder(std::atan2(v.y, v.x) - ref, 2.0 * geo::kPi) < -p.port_tolerance;
-    out.compliant = !(to_port && norm(d) <= p.port_turn_range && cross(along, d) < 0.0 &&
-                      (e.at_risk_17c || miss_distance(x0, v, y0, w) < p.risk_cpa));
+    if (!to_port) return out;
+    // Judged where the ship begins the turn, port_turn_lead back along the course held, and as
+    // the evaluation judges whom a turn is for: a ship at risk on the course held then (its CPA
+    // ahead within risk_cpa), even if the range opens along the new leg (DNV 51: a port turn to
+    // pass astern of the crossing ship 2.6 km ahead, its CPA 1.1 km in 210 s), or one the leg
+    // itself would close within risk_cpa.
+    const Vec2 xe = x0 - p.port_turn_lead * along, ye = y0 - (p.port_turn_lead / vn) * w, de = ye - xe;
+    if (!(norm(de) <= p.port_turn_range && cross(along, de) < 0.0)) return out;
+    const Vec2 held = vn * along;
+    const bool held_risk = geom::cpa_time(de, w - held) > 0.0 && miss_distance(xe, held, ye, w) < p.risk_cpa;
+    const bool leg_risk = dot(de, v - w) > 0.0 && miss_distance(xe, v, ye, w) < p.risk_cpa;
+    out.compliant = !(e.at_risk_17c || held_risk || leg_risk);
     return out;
   }
+  if (dot(d, v - w) <= 0.0) return out;  // the range opens along this leg: being cleared
   const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);
   switch (e.obligation) {
     case Obligation::kHeadOn: out.compliant = cross(v, d) < 0.0 && !port_turn; break;

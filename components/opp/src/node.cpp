@@ -63,6 +63,10 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
          "x d_safety: rule 17(c) (no turn to port for a crossing ship on the port side that the own ship stands on "
          "for) binds within this range, where the own ship may act for that ship (beyond the evaluation's stage 3, "
          "4 r_min_cpa); farther off a turn made for another ship is not action for it");
+  ps.add("plan.rule17c_lead", &p.rule17c_lead, 0.4, "-", 0.0, 10.0,
+         "x d_safety: a port leg is judged for rule 17(c) as begun this far earlier on the course held; at least the "
+         "guidance's circle of acceptance, where it turns for the next leg (0.25 d_safety in the paper suite, 800 m / "
+         "3200 m; up to 0.33 in the DNV suite, 305 m / 926 m)");
   ps.add("plan.tracking_margin", &p.tracking_margin, 0.02, "-", 0.0, 1.0,
          "x d_safety kept beyond d_safety from every target: a plan that grazes d_safety is lost by the ship "
          "following it (cross-track error of metres), so the margin is planned, not left to chance");
@@ -152,6 +156,7 @@ Setup build_setup(const NodeParams& p, const OwnReport& own, const GoalSpec& goa
   for (Target& t : pb.targets) t.margin += p.tracking_margin * s.constraints.safety_distance;
   s.constraints.colreg.port_turn_range = p.rule17c_range * s.constraints.safety_distance;
   s.constraints.colreg.risk_cpa = p.encounter_cpa * s.constraints.safety_distance;
+  s.constraints.colreg.port_turn_lead = p.rule17c_lead * s.constraints.safety_distance;
   s.constraints.colreg.act_range = s.constraints.colreg_distance;
   s.budget = p.budget;
   s.budget.seed = static_cast<uint64_t>(p.seed) + plan_index;

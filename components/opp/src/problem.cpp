@@ -38,6 +38,7 @@ void ConstraintParams::validate() const {
           "must be in [0, pi)");
   require(colreg.port_turn_range > 0, "colreg.port_turn_range", "must be > 0");
   require(colreg.risk_cpa > 0, "colreg.risk_cpa", "must be > 0");
+  require(colreg.port_turn_lead >= 0 && std::isfinite(colreg.port_turn_lead), "colreg.port_turn_lead", "must be finite and >= 0");
   require(colreg.act_range >= 0, "colreg.act_range", "must be >= 0");
   require(fin(colreg.head_on_turn) && colreg.head_on_turn >= 0 && colreg.head_on_turn < kPi / 2, "colreg.head_on_turn",
           "must be in [0, pi/2)");

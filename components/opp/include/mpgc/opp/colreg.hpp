@@ -27,6 +27,10 @@ struct ColregParams {
   // may take once that ship is near: within this range a leg closing it may not turn to port of
   // course0; farther off a turn (made for another ship) is no such action.
   double port_turn_range = 1e300;                 // [m] (the node sets plan.rule17c_range x d_safety)
+  // The guidance turns onto a leg before its first waypoint (at the circle of acceptance, 2.5 ship
+  // lengths), so a port leg is judged for 17(c) as begun this far earlier on the course held: the
+  // plan turned back at the crossing ship's CPA, the ship 10-20 s before it (DNV 32, 40, 51).
+  double port_turn_lead = 0.0;                    // [m] (the node sets plan.rule17c_lead x d_safety)
   // A leg that would pass a target closer than this is a risk of collision to it: only such a
   // port leg is a 17(c) turn "for" it (one passing it 3 km off is not: DNV 30), and only such a
   // head-on leg must have altered (head_on_turn).

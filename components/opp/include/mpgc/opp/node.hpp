@@ -43,6 +43,7 @@ struct NodeParams {
   double max_obstacle_age = 10;  // [s] moving obstacles older than this are not planned with
   double target_sigmas = 2;      // [-] a target is kept d_safety + this x its position sigma away
   double rule17c_range = 5.0;    // [-] x d_safety: colreg.port_turn_range (17(c) within it)
+  double rule17c_lead = 0.4;     // [-] x d_safety: colreg.port_turn_lead
   double tracking_margin = 0.02; // [-] x d_safety, kept beyond d_safety from every target: the ship
                                  //     follows a plan to within metres, not exactly
   bool require_chart = true;     // no plan before obstacles/fixed said which region is known
