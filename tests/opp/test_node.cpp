@@ -313,6 +313,22 @@ TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
   EXPECT_TRUE(fixed.emergency);  // no path at the one speed: the emergency leg
 }
 
+// A slower plan is charged the reduced speed only until it has passed the ships it meets: the
+// time along it of the last closest approach within range.
+TEST(OppNode, TheLastMeetingIsWhenThePlanHasPassedEveryShipItMeets) {
+  opp::Result r;
+  r.path = {{{0, 0}, 0.0}, {{1000, 0}, 200.0}, {{1000, 1000}, 400.0}};  // 5 m/s north, then east
+  // Crossing from the west at 5 m/s on x = 600: nearest at 120 s on the first leg.
+  const opp::Target crossing{1, {600, -600}, {0, 5}, {}};
+  EXPECT_NEAR(opp::last_meeting(r, {crossing}, 500.0), 120.0, 1e-9);
+  // One met on the second leg (waiting at (1000, 600)) comes later; one 5 km off is not met.
+  const opp::Target waiting{2, {1000, 600}, {0, 0}, {}}, far{3, {-5000, 0}, {0, 0}, {}};
+  EXPECT_NEAR(opp::last_meeting(r, {crossing, waiting, far}, 500.0), 320.0, 1e-9);
+  EXPECT_NEAR(opp::last_meeting(r, {far}, 500.0), 0.0, 1e-12);
+  r.path.clear();
+  EXPECT_EQ(opp::last_meeting(r, {crossing}, 500.0), 0.0);
+}
+
 // Rule 17(b): no path at all (here: one iteration, no tree) gives the emergency leg, starboard
 // first, at reduced speed unless the planned speed passes 10 % farther; to port when a fixed
 // obstacle lies to starboard.

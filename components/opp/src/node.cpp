@@ -298,6 +298,22 @@ Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& 
   return r;
 }
 
+double last_meeting(const Result& r, const std::vector<Target>& targets, double range) {
+  double last = 0.0;
+  for (const Target& t : targets) {
+    double best = std::numeric_limits<double>::infinity(), when = 0.0;
+    for (std::size_t i = 1; i < r.path.size(); ++i) {
+      const Waypoint &a = r.path[i - 1], &b = r.path[i];
+      const double dt = b.t - a.t;
+      if (!(dt > 0.0)) continue;
+      const geom::Approach c = geom::closest_approach(a.p - (t.p + a.t * t.v), (1.0 / dt) * (b.p - a.p) - t.v, dt);
+      if (c.dist2 < best) best = c.dist2, when = a.t + c.tau;
+    }
+    if (best < range * range) last = std::max(last, when);
+  }
+  return last;
+}
+
 NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const ObjectiveParams& objective,
                    const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks) {
   auto speeds_of = [&](const Result& r, double u) {
@@ -322,12 +338,21 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
                     (out.result.status != Status::kOk || detour);
   double best_time = out.result.status == Status::kOk ? length(out.result) / s.problem.speed
                                                       : std::numeric_limits<double>::infinity();
+  // A slower plan is sailed slowly only until the targets it meets are passed: re-planned from
+  // there at the planned speed (every replan tries it first). Its arrival is estimated so (seed
+  // 000 §2 reduces speed for the encounter, not for the voyage); charged the whole way at the
+  // reduced speed, letting a crossing ship pass ahead lost to holding a diversion alongside it
+  // (DNV 30, 40, 46).
+  auto arrival = [&](const Result& r, double u) {
+    const double passed = std::min(last_meeting(r, s.problem.targets, s.constraints.colreg_distance), r.path.back().t);
+    return passed + (length(r) - u * passed) / s.problem.speed;
+  };
   for (int k = 1; want && k <= p.speed_steps; ++k) {
     const double f = 1.0 - k * (1.0 - p.min_speed_fraction) / p.speed_steps;
     Setup slow = s;
     slow.problem.speed = f * s.problem.speed;
     Result r = solve_with_hold(planner, slow, objective, hold, {}, hooks);
-    const double time = r.status == Status::kOk ? length(r) / slow.problem.speed : std::numeric_limits<double>::infinity();
+    const double time = r.status == Status::kOk ? arrival(r, slow.problem.speed) : std::numeric_limits<double>::infinity();
     const bool better = time < best_time || (out.result.status == Status::kNoPath && r.status == Status::kRelaxed);
     if (!better) continue;
     best_time = time;

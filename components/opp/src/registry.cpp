@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mpgc/opp/apf_vo.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 
 namespace mpgc::opp {
@@ -13,6 +14,7 @@ namespace {
 const std::vector<std::pair<std::string, std::function<std::unique_ptr<Planner>()>>>& table() {
   static const std::vector<std::pair<std::string, std::function<std::unique_ptr<Planner>()>>> t = {
       {"rrtstar", [] { return std::make_unique<RrtStar>(); }},
+      {"apf-vo", [] { return std::make_unique<ApfVo>(); }},
   };
   return t;
 }

@@ -164,6 +164,10 @@ Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& 
 // arrives first is taken (the time lost by going slower is its cost). With none compliant, the
 // planned speed's plan stands, unless it had no path at all and a lower speed has one. With no path at any speed
 // and `emergency`, emergency_path.
+// Time along the plan (Waypoint::t) of the last closest approach to a target that comes within
+// range on it (0: none does): when the plan has passed every ship it meets.
+double last_meeting(const Result& r, const std::vector<Target>& targets, double range);
+
 struct NodePlan {
   Result result;
   std::vector<double> speeds;   // [m/s] per waypoint: the speed of the leg that ends there
