@@ -28,6 +28,7 @@
 #include "mpgc/msg/control.hpp"
 #include "mpgc/msg/nav.hpp"
 #include "mpgc/msg/plan.hpp"
+#include "mpgc/opp/registry.hpp"
 #include "mpgc/runtime/component.hpp"
 #include "mpgc/scenario_runner/baseline.hpp"
 #include "mpgc/scenario_runner/evaluation.hpp"
@@ -453,6 +454,8 @@ int main(int argc, char** argv) {
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--quiet", o.quiet, "no progress lines");
+  app.add_option("--planner", o.planner, "the planner behind opp's planning interface (sets opp plan.planner)")
+      ->check(CLI::IsMember(mpgc::opp::planner_names()));
   std::string baseline_file;
   app.add_option("--baseline", baseline_file,
                  "judge against a ratchet (scenarios/baseline.json): fail only when a scenario listed as passing, or "

@@ -69,6 +69,7 @@ struct RunOptions {
   double plan_latency = 0.0;     // [s] per planner iteration: plans take effect late (opp plan.latency_per_iteration)
   bool record = true;            // mpgc_record writes the bus to <run>/run.mcap
   int view_port = 0;             // the recorder serves the live view on 127.0.0.1:<port>; 0: no live view
+  std::string planner;           // opp's plan.planner over the scenario's (--planner); empty: the scenario's or the default
 };
 
 // What the command line gives beside RunOptions' own fields.
