@@ -260,6 +260,16 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-100), crossing, east5, so, ahead_risk).compliant);
   ahead_risk.risk_cpa = 300.0;  // its CPA on the course held, 1.2 km, is no risk then
   EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-100), crossing, east5, so, ahead_risk).compliant);
+  // The course held is held at the encounter's speed (speed0): slowing to 1.5 m/s lets the ship
+  // 1.9 km on the port bow pass ahead 1.1 km off, but at 6 m/s its CPA is 40 m: a port turn made
+  // with the slowing is a turn for it.
+  auto slow_p = near;
+  slow_p.risk_cpa = 800.0;
+  const opp::Vec2 bow2{1500, -1200}, e5{0, 5};
+  EXPECT_TRUE(opp::colreg_check_pinned(kOwn, heading(-30, 1.5), bow2, e5, so, slow_p).compliant);  // speed0 unknown
+  auto so6 = so;
+  so6.speed0 = 6.0;
+  EXPECT_FALSE(opp::colreg_check_pinned(kOwn, heading(-30, 1.5), bow2, e5, so6, slow_p).compliant);
   // Acting, its alteration is readily apparent too (rule 8(b) is for any action).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, so, kP));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(35), y, w, so, kP));

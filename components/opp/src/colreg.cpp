@@ -65,9 +65,13 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
     // ahead within risk_cpa), even if the range opens along the new leg (DNV 51: a port turn to
     // pass astern of the crossing ship 2.6 km ahead, its CPA 1.1 km in 210 s), or one the leg
     // itself would close within risk_cpa.
-    const Vec2 xe = x0 - p.port_turn_lead * along, ye = y0 - (p.port_turn_lead / vn) * w, de = ye - xe;
+    // The speed held is the encounter's (speed0): a port turn combined with slowing down so that
+    // the ship passes ahead is still a turn to port for it (DNV 48 turned 34 deg to port at 1.5
+    // m/s with the crossing ship 3.2 km on the port bow, CPA 1.7 km at 5 m/s).
+    const double uh = std::isfinite(e.speed0) && e.speed0 >= p.min_speed ? e.speed0 : vn;
+    const Vec2 xe = x0 - p.port_turn_lead * along, ye = y0 - (p.port_turn_lead / uh) * w, de = ye - xe;
     if (!(norm(de) <= p.port_turn_range && cross(along, de) < 0.0)) return out;
-    const Vec2 held = vn * along;
+    const Vec2 held = uh * along;
     const bool held_risk = geom::cpa_time(de, w - held) > 0.0 && miss_distance(xe, held, ye, w) < p.risk_cpa;
     const bool leg_risk = dot(de, v - w) > 0.0 && miss_distance(xe, v, ye, w) < p.risk_cpa;
     out.compliant = !(e.at_risk_17c || held_risk || leg_risk);
