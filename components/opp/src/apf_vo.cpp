@@ -187,9 +187,9 @@ int in_vo(const Problem& pb, const ConstraintParams& c, const VoParams& p, Vec2 
 }  // namespace
 
 VoDecision vo_decide(const Problem& pb, const ConstraintParams& c, const VoParams& p, Vec2 x, double t, double u,
-                     double course0) {
+                     double course0, int forced) {
   VoDecision d;
-  d.target = in_vo(pb, c, p, x, t, u * unit_of(course0));
+  d.target = forced >= 0 ? forced : in_vo(pb, c, p, x, t, u * unit_of(course0));
   d.risk = d.target >= 0;
   if (!d.risk) return d;
   const Target& tg = pb.targets[d.target];
@@ -258,6 +258,8 @@ void ApfVo::declare(rt::ParamSet& ps) {
   ps.add("plan.vo.extend", &vo_.extend, 60.0, "s", 1.0, 3600.0,
          "apf-vo: an avoidance leg whose return to the route is not valid yet is held this much longer");
   ps.add("plan.vo.max_manoeuvres", &vo_.max_manoeuvres, 20, "-", 1, 1000, "apf-vo: avoidance legs in one plan");
+  ps.add("plan.vo.checker_trigger", &vo_.checker_trigger, true,
+         "apf-vo: also manoeuvre where the course held fails the shared COLREG check (false: the VO set alone)");
 }
 
 Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
@@ -384,8 +386,28 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
     VoDecision d;
     if (manoeuvres < vo_.max_manoeuvres) {
       for (double s = 0.0; s < len; s += u * scan) {
-        d = vo_decide(pb, c, vo_, pos + (s / len) * seg, t + s / u, u, course);
+        const Vec2 x = pos + (s / len) * seg;
+        d = vo_decide(pb, c, vo_, x, t + s / u, u, course);
         if (d.risk && d.side != VoSide::kNone) {
+          s_hit = s;
+          break;
+        }
+        if (!vo_.checker_trigger || level == ColregLevel::kNone) continue;
+        // The piece of the course held up to the next check, by the shared checker.
+        const double l = std::min(u * scan, len - s);
+        const Vec2 xe = pos + ((s + l) / len) * seg;
+        ++checks;
+        if (check.moving(x, t + s / u, xe, l, level) != ValidityChecker::kColreg) continue;
+        int who = -1;
+        for (size_t k = 0; k < pb.targets.size() && who < 0; ++k) {
+          Problem one = pb;
+          one.targets = {pb.targets[k]};
+          if (ValidityChecker(one, c).moving(x, t + s / u, xe, l, level) == ValidityChecker::kColreg)
+            who = static_cast<int>(k);
+        }
+        if (who < 0) continue;
+        d = vo_decide(pb, c, vo_, x, t + s / u, u, course, who);
+        if (d.side != VoSide::kNone) {
           s_hit = s;
           break;
         }
@@ -418,43 +440,48 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
     bool placed = false;
     Vec2 best_end{};
     double best_t = 0.0;
-    std::vector<Vec2> best_g;
+    size_t rejoin = 0;
     bool have_fallback = false;
-    for (double th : cands) {
-      const Vec2 dir = unit_of(th);
-      const Vec2 vel = u * dir;
-      if (!check.turn_ok(dir_in, dir, 1.0, pts.size() == 1 && s_hit == 0.0)) continue;
-      const Vec2 y = tg.p + tp * tg.v;
-      const double tcpa = colreg::cpa({p.x, p.y, vel.x, vel.y}, {y.x, y.y, tg.v.x, tg.v.y}).tcpa;
-      double hold = std::max(tcpa, scan);
-      // The avoidance leg, then its return: held longer while the return is not yet valid.
-      for (int ext = 0; ext <= 2.0 * vo_.tcpa_threshold / vo_.extend; ++ext, hold += vo_.extend) {
-        const Vec2 e = p + (u * hold) * dir;
-        ++checks;
-        if (!check.fixed_clear(p, e, keep_distance(check, check.fixed_clearance(p))) ||
-            check.moving(p, tp, e, u * hold, level, c.escape_start && pts.size() == 1) != ValidityChecker::kValid)
-          break;
-        if (!have_fallback) {
-          have_fallback = true;
-          best_end = e;
-          best_t = tp + hold;
+    // COLREG first; relaxed as §6 of seed 000 only when no course of the set is valid with it.
+    for (const ColregLevel lv : {level, ColregLevel::kPinned17c, ColregLevel::kPinned, ColregLevel::kNone}) {
+      if (have_fallback || (lv != ColregLevel::kNone && level == ColregLevel::kNone)) break;
+      for (double th : cands) {
+        const Vec2 dir = unit_of(th);
+        const Vec2 vel = u * dir;
+        if (!check.turn_ok(dir_in, dir, 1.0, pts.size() == 1 && s_hit == 0.0)) continue;
+        const Vec2 y = tg.p + tp * tg.v;
+        const double tcpa = colreg::cpa({p.x, p.y, vel.x, vel.y}, {y.x, y.y, tg.v.x, tg.v.y}).tcpa;
+        double hold = std::max(tcpa, scan);
+        // The avoidance leg, then its return: held longer while the return is not yet valid.
+        for (int ext = 0; ext <= 2.0 * vo_.tcpa_threshold / vo_.extend; ++ext, hold += vo_.extend) {
+          const Vec2 e = p + (u * hold) * dir;
+          ++checks;
+          if (!check.fixed_clear(p, e, keep_distance(check, check.fixed_clearance(p))) ||
+              check.moving(p, tp, e, u * hold, lv, c.escape_start && pts.size() == 1) != ValidityChecker::kValid)
+            break;
+          if (!have_fallback) {
+            have_fallback = true;
+            best_end = e;
+            best_t = tp + hold;
+          }
+          // Back to the global path: the first of its remaining waypoints reachable by a valid leg.
+          for (size_t j = idx; j < g.size() && !placed; ++j) {
+            const Vec2 r = g[j] - e;
+            const double rl = norm(r);
+            if (!(rl > 1e-6)) continue;
+            ++checks;
+            if (check.turn_ok(dir, r, rl, false) && check.fixed_clear(e, g[j], keep_distance(check, check.fixed_clearance(e))) &&
+                check.moving(e, tp + hold, g[j], rl, lv) == ValidityChecker::kValid) {
+              best_end = e;
+              best_t = tp + hold;
+              rejoin = j;
+              placed = true;
+            }
+          }
+          if (placed) break;
         }
-        std::string w;
-        std::vector<Vec2> g2 = global(e, dir, &w);
-        if (g2.size() < 2) continue;
-        const Vec2 r = g2[1] - e;
-        const double rl = norm(r);
-        ++checks;
-        if (check.turn_ok(dir, r, rl, false) &&
-            check.moving(e, tp + hold, g2[1], rl, level) == ValidityChecker::kValid) {
-          best_end = e;
-          best_t = tp + hold;
-          best_g = std::move(g2);
-          placed = true;
-          break;
-        }
+        if (placed) break;
       }
-      if (placed) break;
     }
     ++manoeuvres;
     if (!have_fallback) {
@@ -472,18 +499,20 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
     dir_in = (1.0 / norm(best_end - p)) * (best_end - p);
     pos = best_end;
     t = best_t;
-    if (best_g.empty()) {
+    if (placed) {
+      idx = rejoin;
+    } else {
+      // No rejoin within reach: a new global path from the avoidance leg's end.
       std::string w;
-      best_g = global(pos, dir_in, &w);
-      if (best_g.empty()) {
+      g = global(pos, dir_in, &w);
+      if (g.empty()) {
         res.status = Status::kNoPath;
         res.reason = "after the avoidance of target " + std::to_string(tg.id) + ": " + w;
         res.stats.iterations = steps;
         return done(res);
       }
+      idx = 1;
     }
-    g = std::move(best_g);
-    idx = 1;
     notes.push_back(std::string("target ") + std::to_string(tg.id) + " " + colreg::to_string(d.situation) + ": " +
                     (d.side == VoSide::kStarboard ? "starboard" : "port") + " to " +
                     fmt(geo::rad2deg(geo::wrap_2pi(course_of(pts.back() - pts[pts.size() - 2])))) + " deg");
@@ -512,7 +541,15 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
     }
     res.status = Status::kRelaxed;
     res.relaxed = true;
-    reason = "not COLREG-compliant: " + check.check_path(pts, true) + (reason.empty() ? "" : "; " + reason);
+    // Which target the violation is for (the checker's verdict names the leg only).
+    std::string whom;
+    for (const Target& tg : pb.targets) {
+      Problem one = pb;
+      one.targets = {tg};
+      if (!ValidityChecker(one, c).check_path(pts, true).empty()) whom += (whom.empty() ? " (target " : ", ") + std::to_string(tg.id);
+    }
+    if (!whom.empty()) whom += ")";
+    reason = "not COLREG-compliant: " + check.check_path(pts, true) + whom + (reason.empty() ? "" : "; " + reason);
   } else if (!pb.colreg) {
     const std::string safe = check.check_path(pts, false);
     if (!safe.empty()) {

@@ -46,6 +46,10 @@ struct VoParams {
   double resolution = 0.00872664625997;  // [rad] course grid of the VO sets (0.5 deg)
   double extend = 60.0;           // [s] an avoidance leg whose return is not yet valid is held this much longer
   int max_manoeuvres = 20;        // [-] avoidance legs in one plan
+  // Stage 1 also starts a manoeuvre where the course held fails the shared ValidityChecker's COLREG
+  // for a target (the project's obligations pinned when the risk first appears, which may be
+  // before TCPA falls to epsilon). false: the paper's VO set alone.
+  bool checker_trigger = true;
 };
 
 // The improved APF of §4.2 from `from` to `to` over the fixed obstacles of `check` (its clearance
@@ -75,9 +79,11 @@ struct VoDecision {
   bool risk = false;     // the velocity along `course0` lies in the VO set (eq. 18)
   int target = -1;       // index of the target that decided
 };
-// Own ship at x at time t (targets at eq. 3 positions), speed u on course0.
+// Own ship at x at time t (targets at eq. 3 positions), speed u on course0. `forced` >= 0: that
+// target decides as a risk even outside its VO (the shared checker refused the course held for
+// it: an obligation pinned for the encounter, VoParams::checker_trigger).
 VoDecision vo_decide(const Problem& pb, const ConstraintParams& c, const VoParams& p, Vec2 x, double t, double u,
-                     double course0);
+                     double course0, int forced = -1);
 
 class ApfVo final : public Planner {
  public:
