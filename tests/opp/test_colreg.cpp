@@ -125,7 +125,8 @@ TEST(ColregPinned, NoneIsThePerLegModel) {
               opp::colreg_check(kOwn, kNorth, y, {-6, 0}, kP).compliant);
 }
 
-// Rule 8(b): hold the pinned course or alter by at least apparent_turn (30 deg) while closing.
+// Rule 8(b): hold the pinned course or alter by at least apparent_turn (30 deg) + its margin (2 deg)
+// while closing.
 TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
   const opp::Vec2 w{-6, 0}, y{6000, -300};  // head-on, slightly to port
   const auto ho = pinned(opp::Obligation::kHeadOn);
@@ -133,7 +134,8 @@ TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(4), y, w, ho, kP));  // within the tolerance
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(12), y, w, ho, kP));  // a small alteration
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(29), y, w, ho, kP));
-  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, ho, kP));
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(31), y, w, ho, kP));  // short of the margin
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(33), y, w, ho, kP));
   // Opening: passed, any course back to the route.
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), {-2000, -800}, w, ho, kP));
   // Once the alteration has begun, it is completed: holding course0 is no longer enough.
@@ -141,7 +143,7 @@ TEST(ColregPinned, AnAlterationMustBeReadilyApparent) {
   begun.acted = true;
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, kNorth, y, w, begun, kP));
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(20), y, w, begun, kP));
-  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, begun, kP));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(33), y, w, begun, kP));
   // Once made, the band is lifted (e.g. back towards the route while still closing).
   begun.completed = true;
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(12), y, w, begun, kP));
@@ -167,18 +169,19 @@ TEST(ColregPinned, AHeadOnShipNearAltersToStarboard) {
   p.risk_cpa = 200.0;
   p.act_range = 2000.0;
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, kNorth, y, w, ho, p));  // holding: would pass 150 m off
-  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(31), y, w, ho, p));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(33), y, w, ho, p));
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(-3), y, w, ho, p));
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, kNorth, {3000, -150}, w, ho, p));  // beyond act_range
   EXPECT_TRUE(opp::colreg_check_apparent(kOwn, kNorth, {1500, -400}, w, ho, p));  // passing 400 m off
-  // Halved speed: a 15 deg starboard turn is readily apparent; holding course at half speed is still
-  // no alteration of course (rule 14).
+  // Halved speed (and the 5 % margin): a 15 deg starboard turn is readily apparent; holding course at
+  // half speed is still no alteration of course (rule 14).
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15), y, w, ho, p));
-  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(15, 2.9), y, w, ho, p));
+  EXPECT_TRUE(opp::colreg_check_apparent(kOwn, heading(15, 2.6), y, w, ho, p));
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15, 2.9), y, w, ho, p));  // 52 %: short of the margin
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(0, 2.9), y, w, ho, p));
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15, 3.5), y, w, ho, p));
   p.apparent_slowdown = 0.0;
-  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15, 2.9), y, w, ho, p));
+  EXPECT_FALSE(opp::colreg_check_apparent(kOwn, heading(15, 2.6), y, w, ho, p));
   // An alteration made and given up near the ship: back on the meeting course, refused again.
   ho.acted = ho.completed = true;
   EXPECT_FALSE(opp::colreg_check_apparent(kOwn, kNorth, y, w, ho, p));

@@ -112,6 +112,39 @@ TEST(EncounterMemory, ATargetThatTurnsStartsANewEncounter) {
   EXPECT_EQ(t2[0].pinned.obligation, opp::Obligation::kHeadOn);
 }
 
+// Rule 8(b) by speed: a slow-down begun for a ship it gives way to (head-on) marks the action as
+// begun; halved, as made; back to speed on the meeting course with the risk remaining, given up.
+TEST(EncounterMemory, ASlowDownIsAnActionBegunMadeAndGivenUp) {
+  opp::EncounterMemory mem;
+  std::vector<opp::Target> ts{target(1, 8000, -200, 180)};
+  mem.update(params(), own_at(0, 0, 0), ts);
+  ASSERT_EQ(ts[0].pinned.obligation, opp::Obligation::kHeadOn);
+  std::vector<opp::Target> t1{target(1, 7000, -200, 180)};
+  mem.update(params(), own_at(100, 0, 0, 5.0), t1);  // 17 %: within what a turn loses
+  EXPECT_FALSE(t1[0].pinned.acted);
+  std::vector<opp::Target> t2{target(1, 6500, -200, 180)};
+  mem.update(params(), own_at(200, 0, 0, 4.2), t2);  // 30 %: begun, not yet apparent
+  EXPECT_TRUE(t2[0].pinned.acted);
+  EXPECT_FALSE(t2[0].pinned.completed);
+  std::vector<opp::Target> t3{target(1, 6000, -200, 180)};
+  mem.update(params(), own_at(300, 0, 0, 2.9), t3);  // 52 %: made
+  EXPECT_TRUE(t3[0].pinned.completed);
+  std::vector<opp::Target> t4{target(1, 5000, -200, 180)};
+  mem.update(params(), own_at(400, 0, 0, 6.0), t4);  // back to speed, still closing 200 m off
+  EXPECT_FALSE(t4[0].pinned.completed);
+  EXPECT_TRUE(t4[0].pinned.acted);
+  // Disabled (0): a slow-down is no action by itself.
+  opp::EncounterMemoryParams off = params();
+  off.acted_slowdown = off.apparent_slowdown = 0.0;
+  opp::EncounterMemory mem2;
+  std::vector<opp::Target> u0{target(1, 8000, -200, 180)};
+  mem2.update(off, own_at(0, 0, 0), u0);
+  std::vector<opp::Target> u1{target(1, 6000, -200, 180)};
+  mem2.update(off, own_at(300, 0, 0, 2.9), u1);
+  EXPECT_FALSE(u1[0].pinned.acted);
+  EXPECT_FALSE(u1[0].pinned.completed);
+}
+
 // A target that turns as the rules ask of it (head-on: to starboard, rule 14) keeps the
 // encounter: the own ship still owes its part. A turn to port is unexpected: re-assessed.
 TEST(EncounterMemory, ATargetTurningAsTheRulesAskKeepsTheEncounter) {

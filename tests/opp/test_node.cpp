@@ -325,8 +325,19 @@ TEST(OppNode, TheLastMeetingIsWhenThePlanHasPassedEveryShipItMeets) {
   const opp::Target waiting{2, {1000, 600}, {0, 0}, {}}, far{3, {-5000, 0}, {0, 0}, {}};
   EXPECT_NEAR(opp::last_meeting(r, {crossing, waiting, far}, 500.0), 320.0, 1e-9);
   EXPECT_NEAR(opp::last_meeting(r, {far}, 500.0), 0.0, 1e-12);
+  // One crossing 300 m ahead is nearest (212 m) at 150 s: sailed at 5 m/s until then, at 10 m/s
+  // after (still 50 m clear of it), 150 + 1250 m / 10 m/s. A ship followed along the second leg
+  // (at 5 m/s east, 300 m ahead of it, nearest at 170 s on the first) is not passed: resuming
+  // would run into it, so the plan's own 400 s.
+  const opp::Target ahead{5, {900, -600}, {0, 5}, {}};
+  EXPECT_NEAR(opp::last_meeting(r, {ahead}, 500.0), 150.0, 1e-9);
+  EXPECT_NEAR(opp::resumed_arrival(r, {ahead}, 500.0, 50.0, 10.0), 275.0, 1e-9);
+  const opp::Target followed{4, {1000, -700}, {0, 5}, {}};
+  EXPECT_NEAR(opp::last_meeting(r, {followed}, 500.0), 170.0, 1e-9);
+  EXPECT_NEAR(opp::resumed_arrival(r, {ahead, followed}, 500.0, 50.0, 10.0), 400.0, 1e-9);
   r.path.clear();
   EXPECT_EQ(opp::last_meeting(r, {crossing}, 500.0), 0.0);
+  EXPECT_EQ(opp::resumed_arrival(r, {crossing}, 500.0, 100.0, 10.0), 0.0);
 }
 
 // Rule 17(b): no path at all (here: one iteration, no tree) gives the emergency leg, starboard

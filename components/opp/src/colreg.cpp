@@ -104,11 +104,12 @@ bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncount
       miss_distance(x0, v, y0, w) < p.risk_cpa)
     return false;
   if (!(p.apparent_turn > p.port_tolerance) || e.completed) return true;
-  if (p.apparent_slowdown > 0.0 && norm(v) <= (1.0 - p.apparent_slowdown) * e.speed0) return true;
+  if (p.apparent_slowdown > 0.0 && norm(v) <= (1.0 - p.apparent_slowdown - p.apparent_slowdown_margin) * e.speed0)
+    return true;
   const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
-  const double a = either ? std::fabs(turn) : turn;
-  if (e.acted) return a >= p.apparent_turn;
-  return !(a > p.port_tolerance && a < p.apparent_turn);
+  const double a = either ? std::fabs(turn) : turn, need = p.apparent_turn + p.apparent_turn_margin;
+  if (e.acted) return a >= need;
+  return !(a > p.port_tolerance && a < need);
 }
 
 ColregCheck colreg_check(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const ColregParams& p) {

@@ -27,6 +27,8 @@ void EncounterMemoryParams::validate() const {
   need(head_on_sector > 0 && head_on_sector < geo::kPi / 2, "head_on_sector", "must be in (0, pi/2)");
   need(acted_turn > 0 && acted_turn < geo::kPi / 2, "acted_turn", "must be in (0, pi/2)");
   need(apparent_turn >= 0 && apparent_turn < geo::kPi, "apparent_turn", "must be in [0, pi)");
+  need(acted_slowdown >= 0 && acted_slowdown < 1, "acted_slowdown", "must be in [0, 1)");
+  need(apparent_slowdown >= 0 && apparent_slowdown < 1, "apparent_slowdown", "must be in [0, 1)");
   need(port_turn_range > 0, "port_turn_range", "must be > 0");
 }
 
@@ -97,12 +99,19 @@ void EncounterMemory::update(const EncounterMemoryParams& p, const colreg::ShipK
         const double own_turn = std::remainder(own.course() - e.course0, 2.0 * geo::kPi);
         const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
         const double turned = either ? std::fabs(own_turn) : own_turn;
-        if (own.speed() > 0.5 && turned > p.acted_turn) kept.e.acted = true;
-        if (own.speed() > 0.5 && p.apparent_turn > 0.0 && turned >= p.apparent_turn) kept.e.completed = true;
+        const bool duty = e.obligation == Obligation::kCrossingGiveWay || e.obligation == Obligation::kHeadOn ||
+                          e.obligation == Obligation::kOvertaking;
+        const double slowed = duty && e.speed0 > 0.5 ? 1.0 - own.speed() / e.speed0 : 0.0;
+        if ((own.speed() > 0.5 && turned > p.acted_turn) || (p.acted_slowdown > 0.0 && slowed > p.acted_slowdown))
+          kept.e.acted = true;
+        if ((own.speed() > 0.5 && p.apparent_turn > 0.0 && turned >= p.apparent_turn) ||
+            (p.apparent_slowdown > 0.0 && slowed >= p.apparent_slowdown))
+          kept.e.completed = true;
         // An alteration given up while the risk of collision remains was not made: back on course0
         // with the CPA still inside cpa_risk, it is to be made again (Annapolis: 33 deg to starboard
         // and back within a minute, 2.9 km from a head-on ship later passed at 190 m after 17 deg).
-        if (kept.e.completed && own.speed() > 0.5 && turned < p.acted_turn && a.cpa.tcpa > 0.0 && a.cpa.dcpa < p.cpa_risk)
+        if (kept.e.completed && own.speed() > 0.5 && turned < p.acted_turn && !(slowed > p.acted_slowdown) &&
+            a.cpa.tcpa > 0.0 && a.cpa.dcpa < p.cpa_risk)
           kept.e.completed = false;
         follow_17c(kept.e, a);
         next[t.id] = kept;

@@ -42,6 +42,11 @@ void declare(rt::ParamSet& ps, NodeParams& p, std::vector<std::unique_ptr<Planne
          "d_safety is altered to starboard by at least this");
   ps.add("plan.apparent_slowdown", &c.colreg.apparent_slowdown, 0.5, "-", 0.0, 0.99,
          "rule 8(b): a leg this much slower than the speed an encounter began at is a readily apparent action (0: never)");
+  ps.add("plan.apparent_turn_margin", &c.colreg.apparent_turn_margin, geo::deg2rad(2.0), "rad", 0.0, 1.5,
+         "a readily apparent leg turns this far beyond plan.apparent_turn (the course sailed approaches a leg's only "
+         "asymptotically, and the evaluation measures the course sailed)");
+  ps.add("plan.apparent_slowdown_margin", &c.colreg.apparent_slowdown_margin, 0.05, "-", 0.0, 0.5,
+         "... and a slow one is this much slower than plan.apparent_slowdown asks");
   ps.add("plan.escape_start", &c.escape_start, true,
          "start within d_safety (target moved in): still plan; the first leg may not get closer (else INVALID_INPUT)");
   ps.add("plan.gamma_s", &o.gamma_s, 500.0, "m/rad^2", 0.0, 1e9, "weight of the steering cost (eq. 6)");
@@ -179,8 +184,10 @@ EncounterMemoryParams encounter_params(const NodeParams& p, const Setup& s) {
   ep.head_on_sector = p.sector_head_on;
   // An alteration has begun once the own course leaves the band a pinned leg may hold.
   ep.acted_turn = std::max(s.constraints.colreg.port_tolerance, geo::deg2rad(1.0));
-  // Made once the own course is within a degree of the readily apparent alteration.
-  ep.apparent_turn = std::max(0.0, s.constraints.colreg.apparent_turn - geo::deg2rad(1.0));
+  // Made once the course or the speed sailed is altered as much as rule 8(b) asks (the legs aim
+  // beyond it by the apparent margins, so that it is reached).
+  ep.apparent_turn = s.constraints.colreg.apparent_turn;
+  ep.apparent_slowdown = s.constraints.colreg.apparent_slowdown;
   ep.port_turn_range = s.constraints.colreg.port_turn_range;
   return ep;
 }
@@ -314,6 +321,34 @@ double last_meeting(const Result& r, const std::vector<Target>& targets, double 
   return last;
 }
 
+double resumed_arrival(const Result& r, const std::vector<Target>& targets, double range, double clear,
+                       double cruise) {
+  if (r.path.size() < 2) return r.path.empty() ? 0.0 : r.path.back().t;
+  const double slow = r.path.back().t, passed = std::min(last_meeting(r, targets, range), slow);
+  // The rest of the path from where the plan is at `passed`, timed at the cruise speed.
+  std::vector<Waypoint> rest;
+  for (std::size_t i = 1; i < r.path.size(); ++i) {
+    const Waypoint &a = r.path[i - 1], &b = r.path[i];
+    if (b.t < passed) continue;
+    if (rest.empty()) {
+      const double f = b.t > a.t ? (passed - a.t) / (b.t - a.t) : 1.0;
+      rest.push_back({a.p + f * (b.p - a.p), passed});
+    }
+    rest.push_back({b.p, rest.back().t + norm(b.p - rest.back().p) / cruise});
+  }
+  for (std::size_t i = 1; i < rest.size(); ++i) {
+    const Waypoint &a = rest[i - 1], &b = rest[i];
+    const double dt = b.t - a.t;
+    if (!(dt > 0.0)) continue;
+    for (const Target& t : targets) {
+      const double c = clear + t.margin;
+      if (geom::closest_approach(a.p - (t.p + a.t * t.v), (1.0 / dt) * (b.p - a.p) - t.v, dt).dist2 < c * c)
+        return slow;  // resuming would run into a ship (one followed, not passed): slow the whole way
+    }
+  }
+  return rest.empty() ? slow : rest.back().t;
+}
+
 NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const ObjectiveParams& objective,
                    const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks) {
   auto speeds_of = [&](const Result& r, double u) {
@@ -343,16 +378,18 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
   // 000 §2 reduces speed for the encounter, not for the voyage); charged the whole way at the
   // reduced speed, letting a crossing ship pass ahead lost to holding a diversion alongside it
   // (DNV 30, 40, 46).
-  auto arrival = [&](const Result& r, double u) {
-    const double passed = std::min(last_meeting(r, s.problem.targets, s.constraints.colreg_distance), r.path.back().t);
-    return passed + (length(r) - u * passed) / s.problem.speed;
+  auto arrival = [&](const Result& r) {
+    // Resumed only where the rest at cruise is no new risk of collision (DNV 34 trailed an
+    // overtaken ship at 25 % for 1200 s: each slow plan counted on passing it at cruise later).
+    return resumed_arrival(r, s.problem.targets, s.constraints.colreg_distance, s.constraints.colreg.risk_cpa,
+                           s.problem.speed);
   };
   for (int k = 1; want && k <= p.speed_steps; ++k) {
     const double f = 1.0 - k * (1.0 - p.min_speed_fraction) / p.speed_steps;
     Setup slow = s;
     slow.problem.speed = f * s.problem.speed;
     Result r = solve_with_hold(planner, slow, objective, hold, {}, hooks);
-    const double time = r.status == Status::kOk ? arrival(r, slow.problem.speed) : std::numeric_limits<double>::infinity();
+    const double time = r.status == Status::kOk ? arrival(r) : std::numeric_limits<double>::infinity();
     const bool better = time < best_time || (out.result.status == Status::kNoPath && r.status == Status::kRelaxed);
     if (!better) continue;
     best_time = time;

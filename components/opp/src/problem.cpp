@@ -44,6 +44,11 @@ void ConstraintParams::validate() const {
           "must be in [0, pi/2)");
   require(fin(colreg.apparent_slowdown) && colreg.apparent_slowdown >= 0 && colreg.apparent_slowdown < 1,
           "colreg.apparent_slowdown", "must be in [0, 1)");
+  require(fin(colreg.apparent_turn_margin) && colreg.apparent_turn_margin >= 0 && colreg.apparent_turn_margin < kPi / 2,
+          "colreg.apparent_turn_margin", "must be in [0, pi/2)");
+  require(fin(colreg.apparent_slowdown_margin) && colreg.apparent_slowdown_margin >= 0 &&
+              colreg.apparent_slowdown + colreg.apparent_slowdown_margin < 1,
+          "colreg.apparent_slowdown_margin", "must be >= 0 with apparent_slowdown + it < 1");
   require(fin(colreg_spacing) && colreg_spacing > 0, "colreg_spacing", "must be finite and > 0");
 }
 

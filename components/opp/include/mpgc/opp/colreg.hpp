@@ -43,6 +43,11 @@ struct ColregParams {
   // Rule 8(b): "alteration of course and/or speed": a leg at most (1 - apparent_slowdown) of the
   // speed the encounter began at is a readily apparent action whatever its course (0: never).
   double apparent_slowdown = 0.5;                 // [-] the NTNU evaluator's speed reduction
+  // A readily apparent leg aims this far beyond apparent_turn / apparent_slowdown: the evaluation
+  // measures the course and speed sailed, which approach a leg's only asymptotically (DNV 47 turned
+  // 29.98 deg for 30, DNV 41 slowed 48 % for 50 %).
+  double apparent_turn_margin = 0.03490658503988659;  // [rad] 2 deg
+  double apparent_slowdown_margin = 0.05;             // [-]
 };
 
 // The situation of one leg in the project's one encounter vocabulary (colreg::EncounterType):

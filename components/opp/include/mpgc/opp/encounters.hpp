@@ -36,6 +36,12 @@ struct EncounterMemoryParams {
   double acted_turn = 0.08726646259971647;  // [rad] 5 deg
   // ... and this far (colreg's apparent_turn) as made (PinnedEncounter::completed); 0: never.
   double apparent_turn = 0.5235987755982988;  // [rad] 30 deg
+  // The same by speed (for a give-way, head-on or overtaking duty): the speed sailed this much below
+  // the encounter's speed0 marks the action as begun (above the speed a turn alone loses), and
+  // apparent_slowdown (colreg's) below it as made; 0: never. Without it a slow-down begun for a
+  // ship was given up before it was apparent (DNV 41: 48 % for the 50 % rule 8(b) asks).
+  double acted_slowdown = 0.2;     // [-]
+  double apparent_slowdown = 0.5;  // [-]
   // Range within which a crossing stand-on target's rule 17(c) reference (PinnedEncounter::held_17c)
   // follows the own course (colreg's port_turn_range).
   double port_turn_range = 1e300;  // [m]

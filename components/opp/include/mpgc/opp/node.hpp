@@ -167,6 +167,11 @@ Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& 
 // Time along the plan (Waypoint::t) of the last closest approach to a target that comes within
 // range on it (0: none does): when the plan has passed every ship it meets.
 double last_meeting(const Result& r, const std::vector<Target>& targets, double range);
+// Arrival time of a plan made at a reduced speed (Waypoint::t at that speed), sailed so until
+// last_meeting and at `cruise` after, if the rest at cruise keeps every target beyond `clear` +
+// its margin (the risk CPA: a ship followed is not passed); else the plan's own arrival time.
+double resumed_arrival(const Result& r, const std::vector<Target>& targets, double range, double clear,
+                       double cruise);
 
 struct NodePlan {
   Result result;
