@@ -744,6 +744,23 @@ int main(int argc, char** argv) {
     std::printf("\n== growth: scenario 1, 5000 iterations, median of %d seeds ==\n", std::max(3, seeds / 4));
     std::printf("%-28s %12s %12s %12s\n", "case", "plan ms", "us/iter", "build ms");
     const int gs = std::max(3, seeds / 4);
+    struct Timed {
+      double ms, us_per_iteration;
+      std::string status;  // of the last seed's plan
+    };
+    // gs seeds of 5000 iterations from seed0: the median plan time and time per iteration.
+    auto timed = [&](const auto& s, int seed0) {
+      std::vector<double> ms, us;
+      std::string st;
+      for (int i = 0; i < gs; ++i) {
+        opp::Result r;
+        const RunOut a = run_ours(s, seed0 + i, 5000, 0, {}, &r);
+        ms.push_back(1e3 * a.time);
+        us.push_back(1e6 * a.time / a.iterations);
+        st = opp::to_string(r.status);
+      }
+      return Timed{median(ms), median(us), st};
+    };
     for (int nt : {2, 10, 50}) {
       auto s = opp::paper_scenario(1);
       if (nt > 2) {
@@ -753,18 +770,10 @@ int main(int argc, char** argv) {
           if (opp::norm(t.p - s.problem.start) > 2 * s.params.safety_distance) s.problem.targets.push_back(t);
         }
       }
-      std::vector<double> ms, us;
-      std::string st;
-      for (int i = 0; i < gs; ++i) {
-        opp::Result r;
-        const RunOut a = run_ours(s, 6000 + i, 5000, 0, {}, &r);
-        ms.push_back(1e3 * a.time);
-        us.push_back(1e6 * a.time / a.iterations);
-        st = opp::to_string(r.status);
-      }
+      const Timed tm = timed(s, 6000);
       char name[64];
-      std::snprintf(name, sizeof name, "%zu targets (%s)", s.problem.targets.size(), st.c_str());
-      std::printf("%-28s %12.2f %12.3f %12s\n", name, median(ms), median(us), "-");
+      std::snprintf(name, sizeof name, "%zu targets (%s)", s.problem.targets.size(), tm.status.c_str());
+      std::printf("%-28s %12.2f %12.3f %12s\n", name, tm.ms, tm.us_per_iteration, "-");
     }
     for (int np : {1000, 100000, 1000000}) {
       auto s = opp::paper_scenario(1);
@@ -774,18 +783,10 @@ int main(int argc, char** argv) {
       const double build = 1e3 * since(tb);
       s.fixed = fixed;
       s.problem.fixed = fixed.get();
-      std::vector<double> ms, us;
-      std::string st;
-      for (int i = 0; i < gs; ++i) {
-        opp::Result r;
-        const RunOut a = run_ours(s, 7000 + i, 5000, 0, {}, &r);
-        ms.push_back(1e3 * a.time);
-        us.push_back(1e6 * a.time / a.iterations);
-        st = opp::to_string(r.status);
-      }
+      const Timed tm = timed(s, 7000);
       char name[64];
-      std::snprintf(name, sizeof name, "%d fixed points (%s)", np, st.c_str());
-      std::printf("%-28s %12.2f %12.3f %12.1f\n", name, median(ms), median(us), build);
+      std::snprintf(name, sizeof name, "%d fixed points (%s)", np, tm.status.c_str());
+      std::printf("%-28s %12.2f %12.3f %12.1f\n", name, tm.ms, tm.us_per_iteration, build);
     }
   }
 

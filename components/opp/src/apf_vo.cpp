@@ -382,6 +382,14 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
       continue;
     }
     const double course = course_of(seg);
+    // Sails the whole leg to b along the global path.
+    auto sail_leg = [&] {
+      pts.push_back(b);
+      dir_in = (1.0 / len) * seg;
+      pos = b;
+      t += len / u;
+      ++idx;
+    };
     double s_hit = -1.0;
     VoDecision d;
     if (manoeuvres < vo_.max_manoeuvres) {
@@ -414,11 +422,7 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
       }
     }
     if (s_hit < 0.0) {
-      pts.push_back(b);
-      dir_in = (1.0 / len) * seg;
-      pos = b;
-      t += len / u;
-      ++idx;
+      sail_leg();
       continue;
     }
     const Vec2 p = pos + (s_hit / len) * seg;
@@ -487,11 +491,7 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
     if (!have_fallback) {
       notes.push_back("no valid avoidance course for target " + std::to_string(tg.id));
       // Sail on along the global path: the checker's verdict below says what that costs.
-      pts.push_back(b);
-      dir_in = (1.0 / len) * seg;
-      pos = b;
-      t += len / u;
-      ++idx;
+      sail_leg();
       continue;
     }
     if (s_hit > 0.0) pts.push_back(p);
