@@ -86,6 +86,7 @@ int main(int argc, char** argv) {
   const char* shared = std::getenv("MPGC_SHARED_DATA");
   const fs::path data_dir = shared != nullptr ? fs::path(shared) : scen_dir.parent_path() / ".." / "shared" / "data";
   std::vector<std::string> paths, names;
+  std::vector<bool> colreg;
   try {
     std::vector<std::string> all = suites.empty() ? sr::scenario_files(files, "", scen_dir.string(), data_dir.string())
                                                   : files;
@@ -97,7 +98,9 @@ int main(int argc, char** argv) {
       const std::string p = fs::absolute(f).string();
       if (std::find(paths.begin(), paths.end(), p) != paths.end()) continue;
       paths.push_back(p);
-      names.push_back(sr::load_scenario(p).name);
+      const sr::Scenario sc = sr::load_scenario(p);
+      names.push_back(sc.name);
+      colreg.push_back(sc.colreg);
     }
   } catch (const std::exception& e) {
     std::cerr << "mpgc_compare: " << e.what() << "\n";
@@ -120,6 +123,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "compare: %s done (mpgc_run exit %d)\n", p.c_str(), rc);
     }
     results.push_back({p, sr::read_results(dir.string(), names)});
+    for (std::size_t k = 0; k < names.size(); ++k) results.back().scenarios[k].colreg = colreg[k];
   }
   std::fputs(sr::compare_text(results).c_str(), stdout);
   return 0;

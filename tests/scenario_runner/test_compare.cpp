@@ -102,6 +102,17 @@ TEST_F(Compare, SummariesOverScenarios) {
   EXPECT_DOUBLE_EQ(b.plan_ms_p95, 400.0);
 }
 
+TEST_F(Compare, EncountersOfARunWithoutColregDoNotCount) {
+  auto r = results();
+  r[0].scenarios[1].colreg = false;  // s2 sailed without COLREG: its violation was required
+  const sr::PlannerSummary a = sr::summarize(r[0]);
+  EXPECT_EQ(a.encounters, 2);
+  EXPECT_EQ(a.compliant, 2);
+  EXPECT_DOUBLE_EQ(a.colreg_compliant_share, 1.0);
+  EXPECT_EQ(a.passed, 2);  // everything else as before
+  EXPECT_DOUBLE_EQ(a.min_dist_ratio_worst, 1.2);
+}
+
 TEST_F(Compare, TableShowsEveryFailureAndTheJsonLineIsLast) {
   const std::string text = sr::compare_text(results());
   // One row per planner.

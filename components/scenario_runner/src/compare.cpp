@@ -116,8 +116,10 @@ PlannerSummary summarize(const PlannerResults& r) {
     elongation.push_back(s.straight_line > 0 ? s.path_length / s.straight_line : kNaN);
     plan_median.push_back(s.plan_median_ms);
     plan_p95.push_back(s.plan_p95_ms);
-    p.encounters += s.encounters;
-    p.compliant += s.compliant;
+    if (s.colreg) {
+      p.encounters += s.encounters;
+      p.compliant += s.compliant;
+    }
   }
   p.min_dist_ratio_worst = extreme(ratio, true);
   p.min_dist_ratio_median = median(ratio);
@@ -140,11 +142,11 @@ std::string compare_table(const std::vector<PlannerResults>& results) {
     t += format("%-10s %7s %6d %10d %13s %13s %10s %14s %10s %10s\n", p.planner.c_str(),
                 format("%d/%d", p.passed, p.total).c_str(), p.errors, p.collisions,
                 fmt("%.2f", p.min_dist_ratio_worst).c_str(), fmt("%.2f", p.min_dist_ratio_median).c_str(),
-                fmt("%.3f", p.elongation_median).c_str(), colreg.c_str(), fmt("%.1f", p.plan_ms_median).c_str(),
-                fmt("%.1f", p.plan_ms_p95).c_str());
+                fmt("%.3f", p.elongation_median).c_str(), colreg.c_str(), fmt("%.3g", p.plan_ms_median).c_str(),
+                fmt("%.3g", p.plan_ms_p95).c_str());
   }
   t += "(d_min/d_safe: each scenario's min distance / d_safety; elongation: path_length_m / straight_line_m;\n"
-       " COLREG: compliant encounters / encounters met; plan_ms: median of the runs' medians, p95 worst = the\n"
+       " COLREG: compliant encounters / encounters met, in the scenarios that require COLREG; plan_ms: median of the runs' medians, p95 worst = the\n"
        " highest of the runs' p95; all over the scenarios with a metrics.json, errors count as not passed)\n";
 
   // Every scenario, one column per planner: its verdict and d_min/d_safe.

@@ -33,6 +33,8 @@ struct ScenarioFigures {
   double plan_p95_ms = 0;     // [ms] planning_ms.p95 of the run
   int encounters = 0;         // encounters with a situation that the own ship met (encountered, not "none")
   int compliant = 0;          // of those, compliant: true
+  bool colreg = true;         // the scenario requires COLREG (its `colreg`); the encounters of one that
+                              // does not (seed 000's *_nocolreg: a violation is required) are not counted
 };
 
 // Reads `path` (a metrics.json); a missing or malformed file gives ran = false with the reason.
@@ -54,7 +56,7 @@ struct PlannerSummary {
   double min_dist_ratio_worst = 0;  // min over scenarios of min distance / d_safety
   double min_dist_ratio_median = 0; // median over scenarios of the same
   double elongation_median = 0;     // median of path_length / straight_line
-  int encounters = 0, compliant = 0;
+  int encounters = 0, compliant = 0;  // over the scenarios that require COLREG
   double colreg_compliant_share = 0;  // compliant / encounters
   double plan_ms_median = 0;          // median over scenarios of each run's median planning time
   double plan_ms_p95 = 0;             // max over scenarios of each run's p95 (the worst scenario's p95)
