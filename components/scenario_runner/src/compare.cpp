@@ -146,8 +146,9 @@ std::string compare_table(const std::vector<PlannerResults>& results) {
                 fmt("%.3g", p.plan_ms_p95).c_str());
   }
   t += "(d_min/d_safe: each scenario's min distance / d_safety; elongation: path_length_m / straight_line_m;\n"
-       " COLREG: compliant encounters / encounters met, in the scenarios that require COLREG; plan_ms: median of the runs' medians, p95 worst = the\n"
-       " highest of the runs' p95; all over the scenarios with a metrics.json, errors count as not passed)\n";
+       " COLREG: compliant encounters / encounters met, in the scenarios that require COLREG;\n"
+       " plan_ms: median of the runs' medians, p95 worst = the highest of the runs' p95;\n"
+       " all over the scenarios with a metrics.json; errors count as not passed)\n";
 
   // Every scenario, one column per planner: its verdict and d_min/d_safe.
   std::vector<std::string> names;
