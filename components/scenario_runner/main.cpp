@@ -545,8 +545,10 @@ int main(int argc, char** argv) {
   std::fputs(sr::summary(results, o.out).c_str(), stdout);
   if (!baseline) return failed == 0 ? 0 : 1;
   std::vector<sr::Judged> judged;
+  // Another planner's run of a scenario is its own entry of the ratchet: NAME@PLANNER.
+  const std::string suffix = o.planner.empty() ? "" : "@" + o.planner;
   for (const auto& [name, r] : results)
-    judged.push_back({name,
+    judged.push_back({name + suffix,
                       !r.error.empty() || !r.ran ? sr::Result::kError : (r.passed() ? sr::Result::kPassed : sr::Result::kFailed),
                       r.metrics.failures});
   const sr::Ratchet ratchet = sr::judge(*baseline, judged);
