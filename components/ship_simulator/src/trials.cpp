@@ -109,6 +109,36 @@ ZigzagResult zigzag(ShipModel& model, double angle, int first_side, const TrialC
   return res;
 }
 
+std::vector<TableRow> turning_trial(ShipModel& model, double rudder, double r0, const TrialConditions& c,
+                                    double step_s, int n) {
+  c.validate();
+  if (!std::isfinite(rudder) || std::abs(rudder) > model.max_rudder() + 1e-12)
+    throw std::invalid_argument("turning_tables: rudder angle outside the rudder limit");
+  if (!std::isfinite(r0) || std::abs(r0) > 0.1) throw std::invalid_argument("turning_tables: |r0| must be <= 0.1 rad/s");
+  if (!(step_s >= c.dt) || !std::isfinite(step_s)) throw std::invalid_argument("turning_tables: dt_out must be >= dt");
+  const long per_out = std::lround(step_s / c.dt);
+  if (std::abs(per_out * c.dt - step_s) > 1e-9 * step_s)
+    throw std::invalid_argument("turning_tables: dt_out must be a multiple of dt");
+  if (n < 1 || n > 1000000) throw std::invalid_argument("turning_trial: n must be in 1..1e6");
+  ShipState s;
+  s.u = c.approach_speed;
+  s.r = r0;
+  s.rpm = c.rpm;
+  model.set_state(s);
+  std::vector<TableRow> rows;
+  rows.reserve(static_cast<std::size_t>(n));
+  auto record = [&](double t) {
+    const ShipState& q = model.state();
+    rows.push_back({geo::rad2deg(rudder), geo::rad2deg(r0), t, q.x, q.y, q.psi, q.r, q.u, q.v});
+  };
+  record(0.0);
+  for (long k = 1; static_cast<long>(rows.size()) < n; ++k) {
+    model.step(c.dt, ShipCommand{rudder, c.rpm});
+    if (k % per_out == 0) record(static_cast<double>(k) * c.dt);
+  }
+  return rows;
+}
+
 std::vector<TableRow> turning_tables(ShipModel& model, const std::vector<double>& rudders,
                                      const std::vector<double>& r0s, const TrialConditions& c, double duration_s,
                                      double dt_out_s) {
@@ -117,37 +147,23 @@ std::vector<TableRow> turning_tables(ShipModel& model, const std::vector<double>
   if (rudders.size() * r0s.size() > 10000) throw std::invalid_argument("turning_tables: grid larger than 10000 trials");
   if (!(duration_s > 0.0) || duration_s > 36000.0) throw std::invalid_argument("turning_tables: duration must be in (0, 36000] s");
   if (!(dt_out_s >= c.dt) || !std::isfinite(dt_out_s)) throw std::invalid_argument("turning_tables: dt_out must be >= dt");
-  const long per_out = std::lround(dt_out_s / c.dt);
-  if (std::abs(per_out * c.dt - dt_out_s) > 1e-9 * dt_out_s)
-    throw std::invalid_argument("turning_tables: dt_out must be a multiple of dt");
-  const long steps = std::lround(duration_s / c.dt);
+  const long n = std::lround(std::floor(duration_s / dt_out_s + 1e-9)) + 1;
   std::vector<TableRow> rows;
-  for (double d : rudders) {
-    if (!std::isfinite(d) || std::abs(d) > model.max_rudder() + 1e-12)
-      throw std::invalid_argument("turning_tables: rudder angle outside the rudder limit");
+  for (double d : rudders)
     for (double r0 : r0s) {
-      if (!std::isfinite(r0) || std::abs(r0) > 0.1) throw std::invalid_argument("turning_tables: |r0| must be <= 0.1 rad/s");
-      ShipState s;
-      s.u = c.approach_speed;
-      s.r = r0;
-      s.rpm = c.rpm;
-      model.set_state(s);
-      auto record = [&](double t) {
-        const ShipState& q = model.state();
-        rows.push_back({geo::rad2deg(d), geo::rad2deg(r0), t, q.x, q.y, q.psi, q.r, q.u, q.v});
-      };
-      record(0.0);
-      for (long k = 1; k <= steps; ++k) {
-        model.step(c.dt, ShipCommand{d, c.rpm});
-        if (k % per_out == 0) record(static_cast<double>(k) * c.dt);
-      }
+      const auto trial = turning_trial(model, d, r0, c, dt_out_s, static_cast<int>(n));
+      rows.insert(rows.end(), trial.begin(), trial.end());
     }
-  }
   return rows;
 }
 
-void write_tables_csv(std::ostream& out, const std::vector<TableRow>& rows) {
+void write_tables_csv(std::ostream& out, const std::vector<TableRow>& rows, const std::vector<std::string>& notes) {
   out << "# turning-circle tables (seed 002 eq. 1): state [x, y, psi, r, u, v] per trial; NED, psi clockwise\n";
+  out << "# one block per trial, ordered by rudder then r0 (ascending), rows every dt_out from t = 0;\n";
+  out << "# eq. 3 start: x = y = psi = v = 0, r = r0, u = approach speed, rudder 0 then put over (rate-limited)\n";
+  out << "# units: rudder [deg, + starboard], r0 [deg/s], t [s], x north [m], y east [m], psi [rad, unwrapped],\n";
+  out << "#        r [rad/s, + starboard], u surge [m/s], v sway [m/s, + starboard]\n";
+  for (const auto& n : notes) out << "# " << n << "\n";
   out << "rudder_deg,r0_deg_s,t_s,x_m,y_m,psi_rad,r_rad_s,u_m_s,v_m_s\n";
   out << std::setprecision(10);
   for (const auto& r : rows)

@@ -60,6 +60,11 @@ struct TableRow {
 std::vector<TableRow> turning_tables(ShipModel& model, const std::vector<double>& rudders,
                                      const std::vector<double>& r0s, const TrialConditions& c,
                                      double duration_s, double dt_out_s);
-void write_tables_csv(std::ostream& out, const std::vector<TableRow>& rows);
+// One trial of the tables: (rudder, r0) from eq. 3, n rows every step_s [s] (a multiple of c.dt).
+std::vector<TableRow> turning_trial(ShipModel& model, double rudder, double r0, const TrialConditions& c,
+                                    double step_s, int n);
+// The CSV read by opp::load_turning_tables (header comments name units and order; `notes` are
+// written as further '#' lines: model, approach speed, ...).
+void write_tables_csv(std::ostream& out, const std::vector<TableRow>& rows, const std::vector<std::string>& notes = {});
 
 }  // namespace mpgc::ship_simulator
