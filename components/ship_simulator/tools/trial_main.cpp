@@ -1,4 +1,5 @@
 // mpgc_trial: manoeuvring trials of the own-ship model (./mpgc trial ...). Prints one JSON object.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -8,11 +9,13 @@
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/json/json.hpp"
+#include "mpgc/opp/turning_tables.hpp"
 #include "mpgc/ship_simulator/model_factory.hpp"
 #include "mpgc/ship_simulator/trials.hpp"
 
 namespace sim = mpgc::ship_simulator;
 namespace geo = mpgc::geo;
+namespace opp = mpgc::opp;
 
 namespace {
 
@@ -60,14 +63,30 @@ int main(int argc, char** argv) {
   zz->add_option("--side", zz_side, "side of the first rudder order: starboard | port")
       ->check(CLI::IsMember({"starboard", "port"}));
 
-  auto* tb = app.add_subcommand("table", "turning-circle tables of seed 002 §2 as CSV");
-  std::string out_path, rudders_text = "-35,-25,-15,-5,5,15,25,35", r0_text = "-0.3,0,0.3";
-  double duration = 600.0, dt_out = 10.0;
+  auto* tb = app.add_subcommand("table", "turning-circle tables of seed 002 §2 as CSV (alias: tables)");
+  tb->alias("tables");
+  // Defaults: both grids through 0 (§2), fine enough for Fig. 3's interpolation to stay within 10 %
+  // of the node spread in the median case (table-check; tests/opp/test_turning_tables.cpp).
+  std::string out_path, rudders_text, r0_text = "-0.4,-0.3,-0.2,-0.1,0,0.1,0.2,0.3,0.4";
+  {
+    std::ostringstream o;
+    for (int i = -14; i <= 14; ++i) o << (i > -14 ? "," : "") << 2.5 * i;  // -35, -32.5, ... 35
+    rudders_text = o.str();
+  }
+  double duration = 300.0, dt_out = 10.0;
   tb->add_option("--out", out_path, "output CSV file")->required();
   tb->add_option("--rudders-deg", rudders_text, "comma-separated rudder angles [deg], + starboard");
   tb->add_option("--r0-deg-s", r0_text, "comma-separated initial yaw rates [deg/s]");
   tb->add_option("--duration", duration, "length of each trial [s]");
   tb->add_option("--dt-out", dt_out, "recording interval [s]");
+
+  auto* ck = app.add_subcommand("table-check",
+                                "seed 002 §2 accuracy check of a table file against this model (prints JSON)");
+  std::string ck_path;
+  opp::AccuracyParams ck_params;
+  ck->add_option("--tables", ck_path, "CSV written by 'trial table' with the same --model and --speed-kn")->required();
+  ck->add_option("--cases", ck_params.cases, "random starting conditions and rudder settings");
+  ck->add_option("--seed", ck_params.seed, "random seed");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -108,6 +127,36 @@ int main(int argc, char** argv) {
       js["third_overshoot_deg"] = number(r.overshoots_deg.at(2));
       js["reversal_times_s"] = mpgc::json::Json::array();
       for (const double t : r.reversal_times_s) js["reversal_times_s"].push_back(number(t));
+    } else if (*ck) {
+      const auto tables = opp::load_turning_tables_file(ck_path);
+      if (std::abs(tables.approach_speed() - c.approach_speed) > 1e-6 * c.approach_speed)
+        throw std::invalid_argument(ck_path + ": tables made at " + std::to_string(tables.approach_speed()) +
+                                    " m/s, this check at " + std::to_string(c.approach_speed) + " m/s (--speed-kn)");
+      const opp::TrialFn truth = [&](double r0, double rudder, double step, int n) {
+        std::vector<opp::StateVector> out;
+        for (const auto& q : sim::turning_trial(*model, rudder, r0, c, step, n))
+          out.push_back({q.x, q.y, q.psi, q.r, q.u, q.v});
+        return out;
+      };
+      const auto rep = opp::check_accuracy(tables, truth, ck_params);
+      js["trial"] = "table-check";
+      js["tables"] = ck_path;
+      js["cases"] = ck_params.cases;
+      js["seed"] = ck_params.seed;
+      js["fig3_max_pct"] = number(opp::max_of(rep.fig3_pct));
+      js["fig3_median_pct"] = number(opp::median_of(rep.fig3_pct));
+      js["fig3_worst"] = rep.fig3_worst;
+      js["eq4_located"] = rep.eq4_pct.size();
+      js["eq4_max_pct"] = number(opp::max_of(rep.eq4_pct));
+      js["eq4_median_pct"] = number(opp::median_of(rep.eq4_pct));
+      js["eq4_worst"] = rep.eq4_worst;
+      auto within = [](const std::vector<double>& v) {
+        return static_cast<long>(std::count_if(v.begin(), v.end(), [](double e) { return e <= 10.0; }));
+      };
+      for (const auto& [name, v] : rep.fig3_by_param) js["fig3_median_pct_by_param"][name] = number(opp::median_of(v));
+      for (const auto& [name, v] : rep.eq4_by_param) js["eq4_median_pct_by_param"][name] = number(opp::median_of(v));
+      js["fig3_cases_within_10pct"] = within(rep.fig3_pct);
+      js["eq4_cases_within_10pct"] = within(rep.eq4_pct);
     } else {
       std::vector<double> rud = parse_list(rudders_text, "--rudders-deg"), r0 = parse_list(r0_text, "--r0-deg-s");
       for (double& d : rud) d = geo::deg2rad(d);
@@ -115,7 +164,11 @@ int main(int argc, char** argv) {
       const auto rows = sim::turning_tables(*model, rud, r0, c, duration, dt_out);
       std::ofstream out(out_path);
       if (!out) throw std::runtime_error("cannot write '" + out_path + "'");
-      sim::write_tables_csv(out, rows);
+      std::ostringstream note;
+      note.precision(10);
+      note << "model " << model->name() << ", approach speed " << c.approach_speed << " m/s, rpm " << c.rpm
+           << ", integration dt " << c.dt << " s, dt_out " << dt_out << " s, duration " << duration << " s";
+      sim::write_tables_csv(out, rows, {note.str()});
       if (!out) throw std::runtime_error("write to '" + out_path + "' failed");
       js["trial"] = "table";
       js["out"] = out_path;
