@@ -299,8 +299,9 @@ TEST(TurningTables, LoaderNamesWhatIsWrong) {
 //  - Fig. 3 (bilinear table row): median of the cases' worst error 6 %; the claim "all <= 10 %" does
 //    not hold (worst case u near rudder 0, where u is even in the rudder and the node spread tiny);
 //  - eq. 4 (state at a point): median about 28 %, per parameter 14-19 %, the same with a finer
-//    grid: eq. 4 is a weighted mean whose weights (D - d_i)/D stay within [1/6, 1/3] for any point,
-//    so near a node or an edge it is a third of the spread off even for a linear function.
+//    grid: eq. 4 is a weighted mean whose normalised weights (D - d_i)/3D never exceed 1/3, even
+//    on a node, so near an edge of a long quad it is about a third of the spread off even for a
+//    linear function.
 // The test asserts what holds, and that the check does see a coarse table.
 TEST(TurningTables, AccuracyCheckOf200RandomCases) {
   Ship s = make_ship("mmg");
