@@ -50,6 +50,37 @@ double quad_interpolate(const std::array<Vec2, 4>& nodes, const std::array<doubl
   return w[0] * f[0] + w[1] * f[1] + w[2] * f[2] + w[3] * f[3];
 }
 
+std::optional<std::array<double, 2>> quad_inverse_bilinear(const std::array<Vec2, 4>& n, Vec2 p, double tol) {
+  // p - n0 = s E + t F + s t G. Crossing with (E + t G) removes s:
+  // cross(F, G) t^2 + (cross(F, E) - cross(H, G)) t - cross(H, E) = 0, then s by projection.
+  const Vec2 E = n[1] - n[0], F = n[3] - n[0], G = n[0] - n[1] + n[2] - n[3], H = p - n[0];
+  const double a = geom::cross(F, G), b = geom::cross(F, E) - geom::cross(H, G), c = -geom::cross(H, E);
+  double roots[2];
+  int nroots = 0;
+  const double scale = std::abs(b) + std::abs(c) + std::abs(a);
+  if (!(scale > 0.0) || !std::isfinite(scale)) return std::nullopt;
+  if (std::abs(a) <= 1e-12 * scale) {
+    if (std::abs(b) <= 1e-12 * scale) return std::nullopt;
+    roots[nroots++] = -c / b;
+  } else {
+    const double disc = b * b - 4.0 * a * c;
+    if (disc < 0.0) return std::nullopt;
+    const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));  // no cancellation
+    roots[nroots++] = q / a;
+    if (q != 0.0) roots[nroots++] = c / q;
+  }
+  for (int i = 0; i < nroots; ++i) {
+    const double t = roots[i];
+    if (!(t >= -tol && t <= 1.0 + tol)) continue;
+    const Vec2 d = E + t * G;
+    const double dd = geom::norm2(d);
+    if (!(dd > 0.0)) continue;  // a degenerate edge at this t (the first quad's apex)
+    const double s = geom::dot(H - t * F, d) / dd;
+    if (s >= -tol && s <= 1.0 + tol) return std::array<double, 2>{std::clamp(s, 0.0, 1.0), std::clamp(t, 0.0, 1.0)};
+  }
+  return std::nullopt;
+}
+
 bool convex_quad_contains(const std::array<Vec2, 4>& n, Vec2 p, double tol) {
   // Turn at every vertex between non-degenerate edges: all of one sign <=> convex (4 vertices
   // cannot wind twice). A zero-length edge (coincident nodes) is skipped.
@@ -325,7 +356,7 @@ StateVector predict(const TurningTables& tables, const StateVector& start, doubl
   return to_world(start, tables.at(rudder, start.r, t));
 }
 
-std::optional<PointState> state_at_point(const TurningTables& tables, double r0, Vec2 p) {
+std::optional<PointState> state_at_point(const TurningTables& tables, double r0, Vec2 p, QuadRule rule) {
   const auto& rud = tables.rudders();
   const std::size_t nr = rud.size();
   const int nt = tables.n_times();
@@ -347,7 +378,15 @@ std::optional<PointState> state_at_point(const TurningTables& tables, double r0,
         out.node_rudder[n] = rud[ii[n]];
       }
       if (!convex_quad_contains(out.nodes, p, 1e-6)) continue;
-      const auto w = quad_weights(out.nodes, p);  // eq. 4
+      std::array<double, 4> w{};
+      if (rule == QuadRule::kEq4) {
+        w = quad_weights(out.nodes, p);
+      } else {
+        const auto st = quad_inverse_bilinear(out.nodes, p, 1e-6);
+        if (!st) continue;
+        const double a = (*st)[0], b = (*st)[1];
+        w = {(1 - a) * (1 - b), a * (1 - b), a * b, (1 - a) * b};
+      }
       auto f = [&](auto get) {
         double s = 0.0;
         for (int n = 0; n < 4; ++n) s += w[n] * get(n);
@@ -483,6 +522,26 @@ AccuracyReport check_accuracy(const TurningTables& tt, const TrialFn& truth, con
     one("t", ps->t, tstar, ps->node_t, prm.floor_t);
     rep.eq4_pct.push_back(case4);
     if (case4 > worst4) worst4 = case4, rep.eq4_worst = what4;
+
+    // The same point by the inverse bilinear map of the quad (for comparison).
+    if (const auto pi = state_at_point(tt, r0, {want.x, want.y}, QuadRule::kInverseBilinear)) {
+      double worst = 0.0;
+      auto inv = [&](const char* name, double got, double w, const std::array<double, 4>& f, double floor) {
+        const double e = pct(got, w, f.data(), floor);
+        rep.inv_by_param[name].push_back(e);
+        worst = std::max(worst, e);
+      };
+      auto nd = [&](double StateVector::*m) {
+        return std::array<double, 4>{pi->node_states[0].*m, pi->node_states[1].*m, pi->node_states[2].*m,
+                                     pi->node_states[3].*m};
+      };
+      inv("psi", pi->state.psi, want.psi, nd(&StateVector::psi), prm.floor_psi);
+      inv("r", pi->state.r, want.r, nd(&StateVector::r), prm.floor_r);
+      inv("u", pi->state.u, want.u, nd(&StateVector::u), prm.floor_uv);
+      inv("v", pi->state.v, want.v, nd(&StateVector::v), prm.floor_uv);
+      inv("t", pi->t, tstar, pi->node_t, prm.floor_t);
+      rep.inv_pct.push_back(worst);
+    }
   }
   return rep;
 }

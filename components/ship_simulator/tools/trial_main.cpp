@@ -155,8 +155,14 @@ int main(int argc, char** argv) {
       };
       for (const auto& [name, v] : rep.fig3_by_param) js["fig3_median_pct_by_param"][name] = number(opp::median_of(v));
       for (const auto& [name, v] : rep.eq4_by_param) js["eq4_median_pct_by_param"][name] = number(opp::median_of(v));
+      js["inverse_bilinear_located"] = rep.inv_pct.size();
+      js["inverse_bilinear_max_pct"] = number(opp::max_of(rep.inv_pct));
+      js["inverse_bilinear_median_pct"] = number(opp::median_of(rep.inv_pct));
+      for (const auto& [name, v] : rep.inv_by_param)
+        js["inverse_bilinear_median_pct_by_param"][name] = number(opp::median_of(v));
       js["fig3_cases_within_10pct"] = within(rep.fig3_pct);
       js["eq4_cases_within_10pct"] = within(rep.eq4_pct);
+      js["inverse_bilinear_cases_within_10pct"] = within(rep.inv_pct);
     } else {
       std::vector<double> rud = parse_list(rudders_text, "--rudders-deg"), r0 = parse_list(r0_text, "--r0-deg-s");
       for (double& d : rud) d = geo::deg2rad(d);

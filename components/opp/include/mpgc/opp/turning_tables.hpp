@@ -52,6 +52,13 @@ double interpolate_bilinear(double a1, double a2, double b1, double b2, double f
 std::array<double, 4> quad_weights(const std::array<geom::Vec2, 4>& nodes, geom::Vec2 p);
 double quad_interpolate(const std::array<geom::Vec2, 4>& nodes, const std::array<double, 4>& f, geom::Vec2 p);
 
+// Not in the paper; the interpolant eq. 4 is not: (s, t) in [0, 1]^2 with
+// p = (1-s)(1-t) n0 + s(1-t) n1 + s t n2 + (1-s) t n3 (the quad's bilinear map inverted), so that
+// f0 = (1-s)(1-t) f0 + ... reproduces the node values and every bilinear field. nullopt when p is
+// not in the quad (tol in s, t).
+std::optional<std::array<double, 2>> quad_inverse_bilinear(const std::array<geom::Vec2, 4>& nodes, geom::Vec2 p,
+                                                           double tol = 1e-9);
+
 // True when nodes (in order around the boundary, either sense) form a convex quadrilateral, which
 // may be degenerate (two nodes coincide: the first quad of a fan at t = 0 is a triangle), and p is
 // inside or on it (within tol [m]).
@@ -116,7 +123,10 @@ struct PointState {
   std::array<StateVector, 4> node_states{};          // its nodes' states
   std::array<double, 4> node_t{}, node_rudder{};     // their times [s] and rudders [rad]
 };
-std::optional<PointState> state_at_point(const TurningTables& tables, double r0, geom::Vec2 p);
+// rule kEq4 is the paper's; kInverseBilinear uses quad_inverse_bilinear on the same quad.
+enum class QuadRule { kEq4, kInverseBilinear };
+std::optional<PointState> state_at_point(const TurningTables& tables, double r0, geom::Vec2 p,
+                                         QuadRule rule = QuadRule::kEq4);
 
 // The accuracy check of §2 (after eq. 4): random starting conditions r0 and rudder settings
 // (seeded), the model itself simulated from eq. 3 against the tables' interpolation. The paper's
@@ -151,6 +161,9 @@ struct AccuracyReport {
   std::string fig3_worst, eq4_worst;  // the worst case, described
   // [%] the same per parameter (x, y, psi, r, u, v; psi, r, u, v, t), every case
   std::map<std::string, std::vector<double>> fig3_by_param, eq4_by_param;
+  // [%] the same point check with QuadRule::kInverseBilinear instead of eq. 4 (not the paper's)
+  std::vector<double> inv_pct;
+  std::map<std::string, std::vector<double>> inv_by_param;
 };
 AccuracyReport check_accuracy(const TurningTables& tables, const TrialFn& truth, const AccuracyParams& params);
 // Largest and median of a list of percentages (NaN for an empty list).
