@@ -329,7 +329,8 @@ TEST(TurningTables, LoaderNamesWhatIsWrong) {
 // the MMG model itself (definitions in turning_tables.hpp). Measured here (MMG KVLCC2, 7.97 m/s,
 // rudder -35..35 deg by 2.5, r0 -0.4..0.4 deg/s by 0.1, 300 s every 10 s; seed 1):
 //  - Fig. 3 (bilinear table row): median of the cases' worst error 6 %; the claim "all <= 10 %" does
-//    not hold (worst case u near rudder 0, where u is even in the rudder and the node spread tiny);
+//    not hold (worst case u where the rudder nearly cancels r0: no turn, no speed loss, a peak of u
+//    between two nodes that both slow down);
 //  - eq. 4 (state at a point): median about 28 %, per parameter 14-19 %, the same with a finer
 //    grid: eq. 4 is a weighted mean whose normalised weights (D - d_i)/3D never exceed 1/3, even
 //    on a node, so near an edge of a long quad it is about a third of the spread off even for a
@@ -351,7 +352,7 @@ TEST(TurningTables, AccuracyCheckOf200RandomCases) {
   std::cout << "fine:   Fig. 3 max " << opp::max_of(f.fig3_pct) << " % median " << opp::median_of(f.fig3_pct)
             << " % (<= 10 %: " << within10(f.fig3_pct) << "/200; worst " << f.fig3_worst << ")\n"
             << "        eq. 4 max " << opp::max_of(f.eq4_pct) << " % median " << opp::median_of(f.eq4_pct)
-            << " % (<= 10 %: " << within10(f.eq4_pct) << "/" << f.eq4_pct.size() << " located; worst " << f.eq4_worst
+            << " % (<= 10 %: " << within10(f.eq4_pct) << "/" << f.eq4_pct.size() << " located, " << f.eq4_other_rudder << " in another rudder's quad; worst " << f.eq4_worst
             << ")\n"
             << "coarse: Fig. 3 median " << opp::median_of(c.fig3_pct) << " %, eq. 4 median " << opp::median_of(c.eq4_pct)
             << " %\n";

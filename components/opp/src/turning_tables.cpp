@@ -506,6 +506,8 @@ AccuracyReport check_accuracy(const TurningTables& tt, const TrialFn& truth, con
     }
     double case4 = 0.0;
     std::string what4;
+    const double eps = 1e-12;
+    if (!(ps->node_rudder[0] <= rudder + eps && rudder <= ps->node_rudder[1] + eps)) ++rep.eq4_other_rudder;
     auto one = [&](const char* name, double got, double w, const std::array<double, 4>& f, double floor) {
       const double e = pct(got, w, f.data(), floor);
       rep.eq4_by_param[name].push_back(e);

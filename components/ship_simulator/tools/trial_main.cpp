@@ -147,6 +147,7 @@ int main(int argc, char** argv) {
       js["fig3_median_pct"] = number(opp::median_of(rep.fig3_pct));
       js["fig3_worst"] = rep.fig3_worst;
       js["eq4_located"] = rep.eq4_pct.size();
+      js["eq4_other_rudder"] = rep.eq4_other_rudder;
       js["eq4_max_pct"] = number(opp::max_of(rep.eq4_pct));
       js["eq4_median_pct"] = number(opp::median_of(rep.eq4_pct));
       js["eq4_worst"] = rep.eq4_worst;

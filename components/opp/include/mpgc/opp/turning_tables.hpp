@@ -158,6 +158,9 @@ struct AccuracyReport {
   std::vector<double> fig3_pct;  // [%] per case, worst parameter and time
   std::vector<double> eq4_pct;   // [%] per located case, worst parameter
   int eq4_not_located = 0;       // cases whose point p(t*) lies in no quad of the fan
+  // located cases whose (earliest) quad is not between the rudders around the case's own: the fan
+  // folds (early in a turn the rudder's kick makes trials cross), another rudder reaches p too
+  int eq4_other_rudder = 0;
   std::string fig3_worst, eq4_worst;  // the worst case, described
   // [%] the same per parameter (x, y, psi, r, u, v; psi, r, u, v, t), every case
   std::map<std::string, std::vector<double>> fig3_by_param, eq4_by_param;
