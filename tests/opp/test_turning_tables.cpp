@@ -321,6 +321,35 @@ TEST(TurningTables, LoaderNamesWhatIsWrong) {
   }
 }
 
+TEST(TurningTables, LoaderSurvivesMangledFiles) {
+  Ship s = make_ship("nomoto");
+  const std::string good = tables_csv(s, range_deg(-10, 10, 10), range_deg(-0.2, 0.2, 0.2), 30.0, 10.0);
+  std::mt19937_64 rng(11);
+  const std::string alphabet = "0123456789.,-+eE#\n nainf";
+  int loaded = 0, refused = 0;
+  for (int i = 0; i < 500; ++i) {
+    std::string m = good;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t at = rng() % m.size();
+      switch (rng() % 3) {
+        case 0: m[at] = alphabet[rng() % alphabet.size()]; break;
+        case 1: m.erase(at, 1 + rng() % 40); break;
+        default: m.insert(at, 1, alphabet[rng() % alphabet.size()]);
+      }
+    }
+    try {
+      load(m);
+      ++loaded;  // an edit inside a number's digits can still be a valid table
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("t.csv:"), std::string::npos) << e.what();
+      ++refused;
+    }  // anything else escapes and fails the test
+  }
+  EXPECT_GT(refused, 250);
+  EXPECT_EQ(loaded + refused, 500);
+}
+
 // ---- §2's accuracy check: 200 random starting conditions and rudder settings ------------------
 
 // The paper (after eq. 4): in 200 experiments "the interpolation error did not exceed 10 % of the
