@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "mpgc/opp/apf_vo.hpp"
+#include "mpgc/opp/dijkstra_sv.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 
 namespace mpgc::opp {
@@ -15,6 +16,7 @@ const std::vector<std::pair<std::string, std::function<std::unique_ptr<Planner>(
   static const std::vector<std::pair<std::string, std::function<std::unique_ptr<Planner>()>>> t = {
       {"rrtstar", [] { return std::make_unique<RrtStar>(); }},
       {"apf-vo", [] { return std::make_unique<ApfVo>(); }},
+      {"dijkstra-sv", [] { return std::make_unique<DijkstraSv>(); }},
   };
   return t;
 }

@@ -1,0 +1,194 @@
+// Seed 002's planner (dijkstra_sv.hpp) on tables of the MMG model: a clear route stays straight, a
+// head-on target is passed port to port (the starboard-to-starboard passage, geometrically cheaper
+// here, is refused), a blocked grid and bad input come back with their reasons.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "mpgc/geo/angles.hpp"
+#include "mpgc/opp/dijkstra_sv.hpp"
+#include "mpgc/opp/registry.hpp"
+#include "mpgc/opp/validity.hpp"
+#include "mpgc/runtime/params.hpp"
+#include "mpgc/ship_simulator/model_factory.hpp"
+#include "mpgc/ship_simulator/trials.hpp"
+#include "mpgc/testing.hpp"
+
+namespace opp = mpgc::opp;
+namespace sim = mpgc::ship_simulator;
+namespace geo = mpgc::geo;
+
+namespace {
+
+constexpr double kU = 7.97;        // [m/s] the Mariner's approach speed in the tables
+constexpr double kSafe = 1296.4;   // [m] 0.7 NM, the paper's safe CPA
+
+// Tables like `./mpgc trial tables`, coarser in rudder and r0 to keep the test fast.
+const opp::TurningTables& tables() {
+  static const opp::TurningTables t = [] {
+    auto model = sim::make_model({"mmg", mpgc::testing::shared_data("ship_models"), "Mariner"});
+    const sim::TrialConditions c{kU, sim::straight_rpm(*model, kU), 0.1};
+    std::vector<double> rud, r0;
+    for (double d = -35.0; d <= 35.0 + 1e-9; d += 5.0) rud.push_back(geo::deg2rad(d));
+    for (double d = -0.4; d <= 0.4 + 1e-9; d += 0.2) r0.push_back(geo::deg2rad(d));
+    std::ostringstream out;
+    sim::write_tables_csv(out, sim::turning_tables(*model, rud, r0, c, 300.0, 10.0), {"test"});
+    std::istringstream in(out.str());
+    return opp::load_turning_tables(in, "test tables");
+  }();
+  return t;
+}
+
+struct Case {
+  std::vector<opp::Disc> discs;
+  opp::DiscObstacles obstacles{{}};
+  opp::Problem pb;
+  opp::ConstraintParams c;
+  Case() {
+    pb.start = {0, 0};
+    pb.heading = 0.0;  // north
+    pb.speed = kU;
+    pb.goal.p = {15000, 0};
+    pb.bounds = {-10000, -10000, 25000, 10000};
+    pb.colreg = true;
+    c.safety_distance = kSafe;
+    c.colreg_distance = 4000.0;
+  }
+  void set_discs(std::vector<opp::Disc> d) {
+    discs = d;
+    obstacles = opp::DiscObstacles(std::move(d));
+    pb.fixed = &obstacles;
+  }
+};
+
+opp::Result solve(const Case& k, opp::DijkstraSv* planner = nullptr) {
+  opp::DijkstraSv own;
+  opp::DijkstraSv& p = planner ? *planner : own;
+  if (!planner) p.set_tables(tables());
+  return p.solve(opp::Request{k.pb, k.c, opp::ObjectiveParams{}, opp::Budget{}, {}});
+}
+
+// Independent of the checker: the least distance to the target over dense samples of the path at
+// its own times, and on which side of the own ship the target is there (+1 starboard, -1 port).
+double closest(const opp::Result& r, const opp::Target& tg, int* side) {
+  double best = 1e300;
+  for (size_t i = 0; i + 1 < r.path.size(); ++i) {
+    const opp::Vec2 a = r.path[i].p, b = r.path[i + 1].p;
+    const int n = std::max(2, static_cast<int>(opp::norm(b - a) / 5.0));
+    for (int k = 0; k <= n; ++k) {
+      const double s = static_cast<double>(k) / n;
+      const opp::Vec2 x = a + s * (b - a);
+      const double t = r.path[i].t + s * (r.path[i + 1].t - r.path[i].t);
+      const opp::Vec2 y = tg.p + t * tg.v;
+      const double d = opp::norm(y - x);
+      if (d < best) {
+        best = d;
+        *side = opp::cross(b - a, y - x) > 0 ? +1 : -1;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST(DijkstraSv, RegisteredWithItsParameters) {
+  auto p = opp::make_planner("dijkstra-sv");
+  EXPECT_EQ(p->name(), "dijkstra-sv");
+  mpgc::rt::ParamSet ps;
+  p->declare(ps);
+  ps.set_override("plan.dsv.row_m=400");
+  EXPECT_NO_THROW(ps.validate_and_apply());
+  EXPECT_EQ(static_cast<opp::DijkstraSv&>(*p).params().row_m, 400.0);
+}
+
+TEST(DijkstraSv, ClearRouteIsStraight) {
+  const Case k;
+  const opp::Result r = solve(k);
+  ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+  ASSERT_EQ(r.path.size(), 2u);
+  EXPECT_EQ(r.path.front().p.x, 0.0);
+  EXPECT_EQ(r.path.back().p.x, 15000.0);
+  EXPECT_TRUE(r.colreg_compliant);
+}
+
+TEST(DijkstraSv, HeadOnTargetIsPassedPortToPort) {
+  // Head-on, 300 m to starboard of the route: passing starboard to starboard would need the
+  // smaller departure, so only COLREG (rule 14, the shared checker) makes the grid turn to starboard.
+  Case k;
+  opp::Target tg;
+  tg.id = 7;
+  tg.p = {9000, 300};
+  tg.v = {-kU, 0};
+  k.pb.targets = {tg};
+  const opp::Result r = solve(k);
+  ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+  EXPECT_TRUE(r.colreg_compliant);
+  EXPECT_NE(r.reason.find("starboard grid"), std::string::npos) << r.reason;
+  int side = 0;
+  const double d = closest(r, tg, &side);
+  EXPECT_GE(d, kSafe - 1.0);
+  EXPECT_EQ(side, -1) << "target passed on the starboard side; " << r.reason;
+  double max_east = 0.0;
+  for (const auto& w : r.path) {
+    EXPECT_GE(w.p.y, -1e-6);  // never to port of the route
+    max_east = std::max(max_east, w.p.y);
+  }
+  EXPECT_GT(max_east, 300.0 + kSafe * 0.5);
+  // The same without COLREG: the cheaper passage to port of the route is taken.
+  k.pb.colreg = false;
+  const opp::Result free = solve(k);
+  ASSERT_EQ(free.status, opp::Status::kOk) << free.reason;
+  int side_free = 0;
+  EXPECT_GE(closest(free, tg, &side_free), kSafe - 1.0);
+  EXPECT_EQ(side_free, +1) << free.reason;
+  if (std::getenv("DSV_PRINT")) {
+    for (const auto* x : {&r, &free}) {
+      std::printf("%s\n", x->reason.c_str());
+      for (const auto& w : x->path) std::printf("  (%.0f, %.0f, %.0f s)\n", w.p.x, w.p.y, w.t);
+    }
+    std::printf("d %.1f free %.1f\n", d, closest(free, tg, &side_free));
+  }
+}
+
+TEST(DijkstraSv, BlockedGridHasNoPathWithAReason) {
+  Case k;
+  k.set_discs({{{5000, 0}, 2500}});  // wider than the grid plus d_safety on both sides
+  const opp::Result r = solve(k);
+  EXPECT_EQ(r.status, opp::Status::kNoPath);
+  EXPECT_TRUE(r.path.empty());
+  EXPECT_NE(r.reason.find("no path at safe CPA"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("fixed"), std::string::npos) << r.reason;
+  if (std::getenv("DSV_PRINT")) std::printf("%s\n", r.reason.c_str());
+}
+
+TEST(DijkstraSv, BadInputIsRefusedByName) {
+  {
+    Case k;
+    k.pb.start.x = std::nan("");
+    const opp::Result r = solve(k);
+    EXPECT_EQ(r.status, opp::Status::kInvalidInput);
+    EXPECT_NE(r.reason.find("start"), std::string::npos) << r.reason;
+  }
+  {
+    Case k;
+    k.set_discs({{{15000, 0}, 300}});  // the goal on land
+    const opp::Result r = solve(k);
+    EXPECT_EQ(r.status, opp::Status::kInvalidInput);
+    EXPECT_NE(r.reason.find("goal"), std::string::npos) << r.reason;
+  }
+  {
+    Case k;
+    opp::DijkstraSv p;  // no tables configured
+    const opp::Result r = solve(k, &p);
+    EXPECT_EQ(r.status, opp::Status::kInvalidInput);
+    EXPECT_NE(r.reason.find("plan.dsv.tables"), std::string::npos) << r.reason;
+    p.params().tables = "/nonexistent/tables.csv";
+    const opp::Result r2 = solve(k, &p);
+    EXPECT_EQ(r2.status, opp::Status::kInvalidInput);
+    EXPECT_NE(r2.reason.find("/nonexistent/tables.csv"), std::string::npos) << r2.reason;
+  }
+}
