@@ -44,6 +44,38 @@ TEST(NodeGrid, NearestAndKNearestMatchBruteForce) {
   }
 }
 
+// A tree in a canal fills a diagonal strip of a large sampling box (seed 000 scenario 3): most
+// cells stay empty, the answers stay exact, the k nearest tie-broken by index.
+TEST(NodeGrid, ThinStripMatchesBruteForce) {
+  std::mt19937_64 g(11);
+  opp::detail::NodeGrid grid;
+  grid.reset(-10000, -10000, 42000, 42000);
+  std::vector<opp::Vec2> pts;
+  std::vector<std::pair<double, int>> out;
+  auto strip = [&] {
+    const double s = u(g) * 40000, w = (u(g) - 0.5) * 300;
+    return opp::Vec2{s + w, s - w};
+  };
+  for (int n = 0; n < 20000; ++n) {
+    const opp::Vec2 p = strip();
+    pts.push_back(p);
+    grid.add(p);
+    if (n % 1999 != 0) continue;
+    for (int q = 0; q < 10; ++q) {
+      const opp::Vec2 x = strip();
+      std::vector<std::pair<double, int>> d;
+      for (size_t i = 0; i < pts.size(); ++i) d.emplace_back(opp::norm2(pts[i] - x), static_cast<int>(i));
+      std::sort(d.begin(), d.end());
+      ASSERT_EQ(grid.nearest(x), d[0].second);
+      const int k = 45;
+      grid.k_nearest(x, k, out);
+      std::sort(out.begin(), out.end());
+      d.resize(std::min(d.size(), static_cast<size_t>(k)));
+      ASSERT_EQ(out, d);
+    }
+  }
+}
+
 // The point set F through the obstacle manager's index (point_obstacles), against brute force.
 TEST(PointObstacles, SegmentClearMatchesBruteForce) {
   std::mt19937_64 g(5);

@@ -313,6 +313,40 @@ TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
   EXPECT_TRUE(fixed.emergency);  // no path at the one speed: the emergency leg
 }
 
+// The lower speeds are solved at once on their own threads: the plan is still a function of the
+// request and the seed alone, bit for bit, and the same as each speed solved on its own.
+TEST(OppNode, SpeedTriesSolvedAtOnceGiveTheSamePlan) {
+  opp::NodeParams p = declared({"plan.max_iterations=3000", "plan.safety_distance=500", "plan.colreg_distance=2000"});
+  std::vector<opp::Disc> walls;
+  for (double x = -2000; x <= 14000; x += 200) {
+    walls.push_back({{x, -900}, 100});
+    walls.push_back({{x, 900}, 100});
+  }
+  const opp::DiscObstacles canal(walls);
+  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
+  const opp::GoalSpec goal{{12000, 0}, std::nan(""), 0, 5, 500, true};
+  const std::vector<opp::Target> tg = {{7, {2000, 0}, {1.5, 0}, {}}};
+  const opp::Setup s = opp::build_setup(p, own, goal, tg, {&canal, std::nullopt}, 0);
+  auto planner = opp::make_planner("rrtstar");
+  const opp::NodePlan a = opp::plan_node(*planner, p, s, p.objective, {}, {}, {});
+  const opp::NodePlan b = opp::plan_node(*planner, p, s, p.objective, {}, {}, {});
+  ASSERT_EQ(a.result.status, opp::Status::kOk) << a.result.reason;
+  ASSERT_LT(a.speed_fraction, 1.0);
+  ASSERT_EQ(a.result.path.size(), b.result.path.size());
+  for (size_t i = 0; i < a.result.path.size(); ++i) {
+    EXPECT_EQ(a.result.path[i].p.x, b.result.path[i].p.x);
+    EXPECT_EQ(a.result.path[i].p.y, b.result.path[i].p.y);
+  }
+  EXPECT_EQ(a.result.cost.total, b.result.cost.total);
+  // The chosen speed solved alone, sequentially, gives the same path.
+  opp::Setup slow = s;
+  slow.problem.speed = a.speed_fraction * s.problem.speed;
+  const opp::Result alone = planner->solve(slow.request(p.objective, {}), {});
+  ASSERT_EQ(alone.path.size(), a.result.path.size());
+  for (size_t i = 0; i < alone.path.size(); ++i) EXPECT_EQ(alone.path[i].p.x, a.result.path[i].p.x);
+  EXPECT_EQ(alone.cost.total, a.result.cost.total);
+}
+
 // A slower plan is charged the reduced speed only until it has passed the ships it meets: the
 // time along it of the last closest approach within range.
 TEST(OppNode, TheLastMeetingIsWhenThePlanHasPassedEveryShipItMeets) {

@@ -524,11 +524,25 @@ std::string shared_data() {
   return env ? env : "../shared/data";
 }
 
-// Plans each case `seeds` times (plan seeds 1..seeds) and prints the planning times and a hash of
+// FNV-1a over the bits of a double: equal hashes, the same plans bit for bit.
+uint64_t mix_hash(uint64_t h, double v) {
+  uint64_t u;
+  std::memcpy(&u, &v, sizeof u);
+  return (h ^ u) * 1099511628211ULL;
+}
+
+void print_hashed(const std::string& name, const std::vector<double>& ms, uint64_t iters, uint64_t checks, int seeds,
+                  uint64_t hash) {
+  std::printf("%-12s %10.2f %10.2f %10.2f %10.0f %12.0f %18llx\n", name.c_str(), median(ms), quantile(ms, 0.95),
+              *std::max_element(ms.begin(), ms.end()), double(iters) / seeds, double(checks) / seeds,
+              static_cast<unsigned long long>(hash));
+}
+
+// Plans each case `seeds` times (plan seeds 1..seeds), then seed 000's scenarios 1-3, and prints the planning times and a hash of
 // every path and cost (equal hashes: the same plans bit for bit).
 void chart_section(int seeds) {
   const std::string data = shared_data();
-  std::printf("\n== the component's planner on charts (%d plans each, defaults + the scenario's parameters) ==\n", seeds);
+  std::printf("\n== the component's planner on charts (defaults + the scenario's parameters) and seed 000 scenarios 1-3 (%d plans each) ==\n", seeds);
   std::printf("%-12s %10s %10s %10s %10s %12s %18s\n", "case", "median ms", "p95 ms", "max ms", "iter", "edge checks",
               "path hash");
   for (const ChartCase& c : chart_cases(data)) {
@@ -540,11 +554,7 @@ void chart_section(int seeds) {
     ps.validate_and_apply();
     std::vector<double> ms;
     uint64_t hash = 1469598103934665603ULL, checks = 0, iters = 0;
-    auto mix = [&](double v) {
-      uint64_t u;
-      std::memcpy(&u, &v, sizeof u);
-      hash = (hash ^ u) * 1099511628211ULL;
-    };
+    auto mix = [&](double v) { hash = mix_hash(hash, v); };
     for (int k = 0; k < seeds; ++k) {
       const opp::Setup s = opp::build_setup(np, c.own, c.goal, opp::targets_at(c.tracks, 0, np.target_sigmas),
                                             opp::ChartView{c.chart.get(), c.region}, static_cast<uint32_t>(k));
@@ -561,9 +571,24 @@ void chart_section(int seeds) {
         mix(w.p.y);
       }
     }
-    std::printf("%-12s %10.2f %10.2f %10.2f %10.0f %12.0f %18llx\n", c.name.c_str(), median(ms), quantile(ms, 0.95),
-                *std::max_element(ms.begin(), ms.end()), double(iters) / seeds, double(checks) / seeds,
-                static_cast<unsigned long long>(hash));
+    print_hashed(c.name, ms, iters, checks, seeds, hash);
+  }
+  // Open water with moving targets and COLREG: seed 000 scenarios 1-3 at the default 20 000
+  // iterations (the budget of every closed-loop plan).
+  for (int n = 1; n <= 3; ++n) {
+    const opp::Scenario sc = opp::paper_scenario(n);
+    std::vector<double> ms;
+    uint64_t hash = 1469598103934665603ULL, checks = 0, iters = 0;
+    for (int k = 0; k < seeds; ++k) {
+      opp::Result r;
+      const RunOut o = run_ours(sc, static_cast<uint64_t>(k), 20000, 0, {}, &r);
+      ms.push_back(1e3 * o.time);
+      checks += o.checks;
+      iters += static_cast<uint64_t>(o.iterations);
+      hash = mix_hash(hash, r.cost.total);
+      for (const auto& w : r.path) hash = mix_hash(mix_hash(hash, w.p.x), w.p.y);
+    }
+    print_hashed("paper_s" + std::to_string(n), ms, iters, checks, seeds, hash);
   }
 }
 

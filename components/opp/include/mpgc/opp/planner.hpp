@@ -100,7 +100,8 @@ class Planner {
   // budget) are the caller's.
   virtual void declare(rt::ParamSet& ps) = 0;
   // Plans one path. Never throws on bad input: it comes back as Status::kInvalidInput with the
-  // reason.
+  // reason. Safe to call concurrently on one planner (the speed tries of plan_node run at once):
+  // a solve keeps its search state to itself and only reads the declared parameters.
   virtual Result solve(const Request& rq, const Hooks& hooks = {}) = 0;
 };
 
