@@ -3,8 +3,6 @@
 // and compete for the cores), then prints one table (a row per planner, every scenario a planner
 // did not pass named under it) and a last line of JSON, from each run's metrics.json
 // (mpgc/scenario_runner/compare.hpp). mpgc_run's own summary goes to DIR/NAME/run.log.
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -13,9 +11,9 @@
 #include <sstream>
 
 #include <CLI/CLI.hpp>
-#include <fcntl.h>
 
 #include "mpgc/opp/registry.hpp"
+#include "mpgc/runtime/process.hpp"
 #include "mpgc/scenario_runner/compare.hpp"
 #include "mpgc/scenario_runner/runner.hpp"
 #include "mpgc/scenario_runner/scenario.hpp"
@@ -31,26 +29,6 @@ std::vector<std::string> split(const std::string& s) {
   for (std::string x; std::getline(in, x, ',');)
     if (!x.empty()) r.push_back(x);
   return r;
-}
-
-// mpgc_run with `args`, its stdout and stderr to `log`; its exit status (-1: killed).
-int run_logged(const std::vector<std::string>& args, const std::string& log) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int fd = open(log.c_str(), O_CREAT | O_WRONLY | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd >= 0) {
-      dup2(fd, STDOUT_FILENO);
-      dup2(fd, STDERR_FILENO);
-    }
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace
@@ -119,7 +97,7 @@ int main(int argc, char** argv) {
       args.insert(args.end(), paths.begin(), paths.end());
       std::fprintf(stderr, "compare: %s on %zu scenario(s), log %s\n", p.c_str(), paths.size(),
                    (dir / "run.log").string().c_str());
-      const int rc = run_logged(args, (dir / "run.log").string());
+      const int rc = mpgc::rt::wait_exit(mpgc::rt::spawn_logged(args, (dir / "run.log").string(), false));
       std::fprintf(stderr, "compare: %s done (mpgc_run exit %d)\n", p.c_str(), rc);
     }
     results.push_back({p, sr::read_results(dir.string(), names)});

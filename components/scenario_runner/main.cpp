@@ -30,6 +30,7 @@
 #include "mpgc/msg/plan.hpp"
 #include "mpgc/opp/registry.hpp"
 #include "mpgc/runtime/component.hpp"
+#include "mpgc/runtime/process.hpp"
 #include "mpgc/scenario_runner/baseline.hpp"
 #include "mpgc/scenario_runner/evaluation.hpp"
 #include "mpgc/scenario_runner/fault_run.hpp"
@@ -97,20 +98,9 @@ class DomainLease {
 
 pid_t start_launcher(const std::string& launch, int domain, const std::string& log_path, const std::string& secure) {
   const std::string exe = (fs::canonical("/proc/self/exe").parent_path() / "mpgc_launch").string();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    setpgid(0, 0);
-    const int fd = open(log_path.c_str(), O_CREAT | O_WRONLY | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, STDOUT_FILENO);
-      dup2(fd, STDERR_FILENO);
-    }
-    const std::string d = std::to_string(domain);
-    if (secure.empty()) execl(exe.c_str(), exe.c_str(), launch.c_str(), "--domain", d.c_str(), nullptr);
-    else execl(exe.c_str(), exe.c_str(), launch.c_str(), "--domain", d.c_str(), "--secure", secure.c_str(), nullptr);
-    _exit(127);
-  }
-  return pid;
+  std::vector<std::string> argv{exe, launch, "--domain", std::to_string(domain)};
+  if (!secure.empty()) argv.insert(argv.end(), {"--secure", secure});
+  return mpgc::rt::spawn_logged(argv, log_path);
 }
 
 int stop_launcher(pid_t pid) {

@@ -1,5 +1,7 @@
 #include "netns.hpp"
 
+#include "mpgc/runtime/process.hpp"
+
 #include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
@@ -33,24 +35,6 @@ void must(const std::vector<std::string>& argv) {
   if (rc != 0) throw std::runtime_error("network lab: '" + joined(argv) + "' failed (" + std::to_string(rc) + "): " + out);
 }
 
-pid_t spawn(const std::vector<std::string>& argv, const std::string& log) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    setpgid(0, 0);
-    const int fd = open(log.empty() ? "/dev/null" : log.c_str(), O_CREAT | O_WRONLY | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd >= 0) {
-      dup2(fd, STDOUT_FILENO);
-      dup2(fd, STDERR_FILENO);
-    }
-    std::vector<char*> a;
-    for (const auto& s : argv) a.push_back(const_cast<char*>(s.c_str()));
-    a.push_back(nullptr);
-    execvp(a[0], a.data());
-    _exit(127);
-  }
-  return pid;
-}
-
 // Namespaces of labs whose process is gone ("mpgc<pid>-<host>").
 void remove_stale_labs() {
   std::error_code ec;
@@ -74,31 +58,6 @@ void without_ipv6(const std::string& ns) {
 }
 
 }  // namespace
-
-int run_command(const std::vector<std::string>& argv, std::string* out) {
-  int fds[2];
-  if (pipe2(fds, O_CLOEXEC) != 0) return -1;
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(fds[1], STDOUT_FILENO);
-    dup2(fds[1], STDERR_FILENO);
-    std::vector<char*> a;
-    for (const auto& s : argv) a.push_back(const_cast<char*>(s.c_str()));
-    a.push_back(nullptr);
-    execvp(a[0], a.data());
-    std::fprintf(stderr, "cannot execute %s: %s\n", a[0], std::strerror(errno));
-    _exit(127);
-  }
-  close(fds[1]);
-  char buf[1024];
-  ssize_t n;
-  while ((n = read(fds[0], buf, sizeof buf)) > 0)
-    if (out) out->append(buf, static_cast<size_t>(n));
-  close(fds[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-}
 
 bool NetnsLab::available() { return geteuid() == 0 && run_command({"ip", "netns", "list"}) == 0; }
 
@@ -175,7 +134,7 @@ NetnsLab::~NetnsLab() {
 
 void NetnsLab::start_helper(const std::string& host, const std::string& what, const std::vector<std::string>& argv,
                             const std::string& log) {
-  helpers_.push_back({host, what, spawn(argv, log), log});
+  helpers_.push_back({host, what, rt::spawn_logged(argv, log), log});
 }
 
 std::map<std::string, std::string> NetnsLab::stop_helpers() {

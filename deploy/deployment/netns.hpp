@@ -6,6 +6,8 @@
 // left behind by a dead process are removed by the next one. Needs root.
 #pragma once
 
+#include "mpgc/runtime/process.hpp"
+
 #include <sys/types.h>
 
 #include <cstdint>
@@ -58,7 +60,7 @@ class NetnsLab {
   std::map<std::string, bool> cut_;
 };
 
-// Runs a command (no shell), returns its exit code; output appended to *out when given.
-int run_command(const std::vector<std::string>& argv, std::string* out = nullptr);
+// Runs a command (no shell): mpgc::rt::run_command, named here for the lab's users.
+using rt::run_command;
 
 }  // namespace mpgc::deploy
