@@ -1,4 +1,4 @@
-// Seed 002's planner (dijkstra_sv.hpp) on tables of the MMG model: a clear route stays straight, a
+// Seed 002's planner (dijkstra_sv.hpp) on tables of the Nomoto Mariner (the DNV runs' own ship): a clear route stays straight, a
 // head-on target is passed port to port (the starboard-to-starboard passage, geometrically cheaper
 // here, is refused), a blocked grid and bad input come back with their reasons.
 #include <gtest/gtest.h>
@@ -29,7 +29,7 @@ constexpr double kSafe = 1296.4;   // [m] 0.7 NM, the paper's safe CPA
 // Tables like `./mpgc trial tables`, coarser in rudder and r0 to keep the test fast.
 const opp::TurningTables& tables() {
   static const opp::TurningTables t = [] {
-    auto model = sim::make_model({"mmg", mpgc::testing::shared_data("ship_models"), "Mariner"});
+    auto model = sim::make_model({"nomoto", mpgc::testing::shared_data("ship_models"), "Mariner"});
     const sim::TrialConditions c{kU, sim::straight_rpm(*model, kU), 0.1};
     std::vector<double> rud, r0;
     for (double d = -35.0; d <= 35.0 + 1e-9; d += 5.0) rud.push_back(geo::deg2rad(d));
@@ -93,6 +93,23 @@ double closest(const opp::Result& r, const opp::Target& tg, int* side) {
   return best;
 }
 
+// Head-on, 300 m to starboard of the route, pinned head-on as opp's encounter memory pins it when
+// the risk appears (without the pin, §5 judges each leg from its own course, and a turn to port
+// made early turns the encounter into a crossing that may be passed starboard to starboard: the
+// shared checker's documented per-leg model, components/opp/README.md).
+opp::Target head_on() {
+  opp::Target tg;
+  tg.id = 7;
+  tg.p = {9000, 300};
+  tg.v = {-kU, 0};
+  tg.pinned.obligation = opp::Obligation::kHeadOn;
+  tg.pinned.course0 = 0.0;
+  tg.pinned.target_course = geo::kPi;
+  tg.pinned.track_side = +1;  // sign(w ^ (x - y)) with w = (-1, 0), x - y = (-9000, -300)
+  tg.pinned.speed0 = kU;
+  return tg;
+}
+
 }  // namespace
 
 TEST(DijkstraSv, RegisteredWithItsParameters) {
@@ -119,10 +136,7 @@ TEST(DijkstraSv, HeadOnTargetIsPassedPortToPort) {
   // Head-on, 300 m to starboard of the route: passing starboard to starboard would need the
   // smaller departure, so only COLREG (rule 14, the shared checker) makes the grid turn to starboard.
   Case k;
-  opp::Target tg;
-  tg.id = 7;
-  tg.p = {9000, 300};
-  tg.v = {-kU, 0};
+  const opp::Target tg = head_on();
   k.pb.targets = {tg};
   const opp::Result r = solve(k);
   ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
@@ -154,13 +168,37 @@ TEST(DijkstraSv, HeadOnTargetIsPassedPortToPort) {
   }
 }
 
+TEST(DijkstraSv, SafeCpaWidensThePassing) {
+  // The problem's d_safety 0.5 NM, the paper's safe CPA 0.7 NM as the planner's parameter.
+  Case k;
+  k.c.safety_distance = 926.0;
+  const opp::Target tg = head_on();
+  k.pb.targets = {tg};
+  opp::DijkstraSv p;
+  p.set_tables(tables());
+  const opp::Result narrow = solve(k, &p);
+  p.params().safe_cpa = kSafe;
+  const opp::Result wide = solve(k, &p);
+  ASSERT_EQ(narrow.status, opp::Status::kOk) << narrow.reason;
+  ASSERT_EQ(wide.status, opp::Status::kOk) << wide.reason;
+  int side = 0;
+  EXPECT_GE(closest(narrow, tg, &side), 926.0 - 1.0);
+  EXPECT_GE(closest(wide, tg, &side), kSafe - 1.0);
+  EXPECT_EQ(side, -1);
+  EXPECT_NE(wide.reason.find("at safe CPA 1296.4 m"), std::string::npos) << wide.reason;
+}
+
 TEST(DijkstraSv, BlockedGridHasNoPathWithAReason) {
   Case k;
-  k.set_discs({{{5000, 0}, 2500}});  // wider than the grid plus d_safety on both sides
-  const opp::Result r = solve(k);
+  k.set_discs({{{5000, 0}, 2500}});  // wider than the grid (10 x 250 m) plus d_safety on both sides
+  opp::DijkstraSv p;
+  p.set_tables(tables());
+  p.params().cols = 10;
+  const opp::Result r = solve(k, &p);
   EXPECT_EQ(r.status, opp::Status::kNoPath);
   EXPECT_TRUE(r.path.empty());
-  EXPECT_NE(r.reason.find("no path at safe CPA"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("no path on the grid"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("at safe CPA 1296.4 m"), std::string::npos) << r.reason;
   EXPECT_NE(r.reason.find("fixed"), std::string::npos) << r.reason;
   if (std::getenv("DSV_PRINT")) std::printf("%s\n", r.reason.c_str());
 }

@@ -145,7 +145,14 @@ struct Search {
           Label& b = L[nid];
           if (nc < b.cost) {
             b.cost = nc;
-            b.s = {vb.x, vb.y, a.s.psi + q->state.psi, q->state.r * u / u_tab, q->state.u, q->state.v};
+            // The next area starts from the state found (§3 Step 4) or, by default, from the leg's
+            // course at a steady rate: guidance sails the straight legs between the vertices, not
+            // the steady-rudder arc, so the ship arrives on the leg's course (an arc that reaches a
+            // vertex 37 deg off the bow ends 75-105 deg off it, a heading the ship never sails).
+            if (p.arc_state)
+              b.s = {vb.x, vb.y, a.s.psi + q->state.psi, q->state.r * u / u_tab, q->state.u, q->state.v};
+            else
+              b.s = {vb.x, vb.y, std::atan2(d.y, d.x), 0.0, u_tab, 0.0};
             b.rudder = q->rudder;
             b.len = a.len + len;
             b.dir = (1.0 / len) * d;
@@ -170,41 +177,51 @@ struct Search {
     for (int e : ends) {
       const Label& E = L[e];
       const Vec2 ve{E.s.x, E.s.y};
-      const double r = (100.0 + p.return_smoothness) / 100.0 * norm(ve - pb.start);
-      std::vector<Vec2> back;
-      if (r < route_len - 1e-6) back.push_back(pb.start + r * ur);
-      back.push_back(pb.goal.p);
-      Vec2 a = ve, dir = E.dir;
-      double len = E.len, cost = E.cost;
-      bool ok = true;
-      for (size_t k = 0; k < back.size() && ok; ++k) {
-        const Vec2 b = back[k];
-        const auto why = leg_ok(dir, a, b, len / u, false, level, out.checks);
-        const Vec2 seg = b - a;
-        const double l = norm(seg);
-        if (why != ValidityChecker::kValid || (k + 1 == back.size() && !check.goal_heading_ok(seg))) {
-          ok = false;
-          if (why == ValidityChecker::kColreg) ++out.colreg_rejects;
-          last_fail = why == ValidityChecker::kTarget   ? "target"
-                      : why == ValidityChecker::kColreg ? "COLREG"
-                      : why == ValidityChecker::kFixed  ? "fixed obstacle"
-                      : why == ValidityChecker::kTurn   ? "turn limit"
-                                                        : "arrival heading";
+      // d1 doubled while the return is not available and R is still before the goal: a longer,
+      // smoother return ("the longer the return, the higher the indicator") that the turn limit
+      // and the targets may allow where d1 itself does not.
+      for (double d1 = p.return_smoothness;; d1 = std::max(2.0 * d1, 10.0)) {
+        const double r = (100.0 + d1) / 100.0 * norm(ve - pb.start);
+        std::vector<Vec2> back;
+        if (r < route_len - 1e-6) back.push_back(pb.start + r * ur);
+        back.push_back(pb.goal.p);
+        Vec2 a = ve, dir = E.dir;
+        double len = E.len, cost = E.cost;
+        bool ok = true;
+        for (size_t k = 0; k < back.size() && ok; ++k) {
+          const Vec2 b = back[k];
+          const auto why = leg_ok(dir, a, b, len / u, false, level, out.checks);
+          const Vec2 seg = b - a;
+          const double l = norm(seg);
+          if (why != ValidityChecker::kValid || (k + 1 == back.size() && !check.goal_heading_ok(seg))) {
+            ok = false;
+            if (why == ValidityChecker::kColreg) ++out.colreg_rejects;
+            last_fail = why == ValidityChecker::kTarget   ? "target"
+                        : why == ValidityChecker::kColreg ? "COLREG"
+                        : why == ValidityChecker::kFixed  ? "fixed obstacle"
+                        : why == ValidityChecker::kTurn   ? "turn limit"
+                                                          : "arrival heading";
+            break;
+          }
+          cost += objective.edge_cost(dir, false, seg, l, objective.fixed_term(b), b, (len + l) / u) +
+                  p.departure_weight * xtrack(b);
+          dir = (1.0 / l) * seg;
+          len += l;
+          a = b;
+        }
+        if (ok) {
+          if (cost < out.cost) {
+            out.ok = true;
+            out.cost = cost;
+            out.pts.clear();
+            for (int v = e; v >= 0; v = L[v].pred) out.pts.push_back(v == 0 ? pb.start : Vec2{L[v].s.x, L[v].s.y});
+            std::reverse(out.pts.begin(), out.pts.end());
+            out.pts.insert(out.pts.end(), back.begin(), back.end());
+          }
           break;
         }
-        cost += objective.edge_cost(dir, false, seg, l, objective.fixed_term(b), b, (len + l) / u) +
-                p.departure_weight * xtrack(b);
-        dir = (1.0 / l) * seg;
-        len += l;
-        a = b;
+        if (back.size() == 1) break;  // already straight to the goal
       }
-      if (!ok || cost >= out.cost) continue;
-      out.ok = true;
-      out.cost = cost;
-      out.pts.clear();
-      for (int v = e; v >= 0; v = L[v].pred) out.pts.push_back(v == 0 ? pb.start : Vec2{L[v].s.x, L[v].s.y});
-      std::reverse(out.pts.begin(), out.pts.end());
-      out.pts.insert(out.pts.end(), back.begin(), back.end());
     }
     if (!out.ok)
       out.why = std::to_string(ends.size()) + " vertices of the last row reached, none returns to the route (eq. 5; last refused for " +
@@ -238,6 +255,7 @@ void DsvParams::validate() const {
   need(std::isfinite(departure_weight) && departure_weight >= 0.0, "plan.dsv.departure_weight must be finite and >= 0");
   need(std::isfinite(rudder_change_weight) && rudder_change_weight >= 0.0,
        "plan.dsv.rudder_change_weight must be finite and >= 0");
+  need(std::isfinite(safe_cpa) && safe_cpa >= 0.0, "plan.dsv.safe_cpa must be finite and >= 0 m");
   need(std::isfinite(return_smoothness) && return_smoothness >= 0.0 && return_smoothness <= 1000.0,
        "plan.dsv.return_smoothness must be in [0, 1000] %");
 }
@@ -246,7 +264,7 @@ void DijkstraSv::declare(rt::ParamSet& ps) {
   ps.add("plan.dsv.tables", &p_.tables, "",
          "dijkstra-sv: turning-circle tables of the own ship (`./mpgc trial tables --out F`); required");
   ps.add("plan.dsv.rows", &p_.rows, 12, "-", 1, 200, "dijkstra-sv: grid rows ahead, the last the target row (Fig. 5)");
-  ps.add("plan.dsv.cols", &p_.cols, 10, "-", 0, 200, "dijkstra-sv: grid columns to one side (Fig. 5)");
+  ps.add("plan.dsv.cols", &p_.cols, 20, "-", 0, 200, "dijkstra-sv: grid columns to one side (Fig. 5)");
   ps.add("plan.dsv.row_m", &p_.row_m, 500.0, "m", 1.0, 1e5, "dijkstra-sv: grid spacing along the course");
   ps.add("plan.dsv.col_m", &p_.col_m, 250.0, "m", 1.0, 1e5, "dijkstra-sv: grid spacing across the course");
   ps.add("plan.dsv.area_rows", &p_.area_rows, 3, "-", 1, 50, "dijkstra-sv: area of steady rudder setting, rows ahead (§3)");
@@ -257,6 +275,10 @@ void DijkstraSv::declare(rt::ParamSet& ps) {
          "dijkstra-sv: cost per radian of rudder change from one area to the next (§3)");
   ps.add("plan.dsv.return_smoothness", &p_.return_smoothness, 20.0, "%", 0.0, 1000.0,
          "dijkstra-sv: d1 of eq. 5, the return to the route");
+  ps.add("plan.dsv.safe_cpa", &p_.safe_cpa, 0.0, "m", 0.0, 1e5,
+         "dijkstra-sv: the paper's safe CPA, used as d_safety when larger (0: the problem's d_safety)");
+  ps.add("plan.dsv.arc_state", &p_.arc_state, false,
+         "dijkstra-sv: the next area starts from the arc's state by eq. 4 (false: on the leg's course, as guidance sails it)");
   ps.add("plan.dsv.inverse_bilinear", &p_.inverse_bilinear, false,
          "dijkstra-sv: state at a vertex by the quad's inverse bilinear map (false: eq. 4)");
 }
@@ -320,64 +342,90 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
   if (tt.rudders().size() < 2 || !(tt.approach_speed() > 0.0))
     return invalid("dijkstra-sv: the tables need at least two rudder settings and a positive approach speed");
 
-  const ConstraintParams& c = rq.constraints;
+  // The paper's safe CPA (plan.dsv.safe_cpa) as the checker's d_safety when it is larger than the
+  // problem's; with no path there, the problem's own d_safety (§3 Step 5: "reduce the safe CPA").
+  std::vector<ConstraintParams> tries{rq.constraints};
+  if (p_.safe_cpa > rq.constraints.safety_distance) {
+    ConstraintParams c = rq.constraints;
+    c.safety_distance = p_.safe_cpa;
+    c.colreg_distance = std::max(c.colreg_distance, 1.5 * p_.safe_cpa);  // d_COLREG > d_safety
+    if (check_problem(pb, c).empty()) tries.insert(tries.begin(), c);
+  }
+  std::string notes;
+  uint64_t checks = 0;
+  int expanded = 0;
+  for (const ConstraintParams& c : tries) {
+    std::optional<Result> r = plan(pb, c, rq, hooks, tt, notes, checks, expanded);
+    if (!r) continue;
+    if (c.safety_distance < tries.front().safety_distance)
+      r->reason = "safe CPA " + fmt(tries.front().safety_distance) + " m reduced to d_safety " + fmt(c.safety_distance) +
+                  " m: " + r->reason;
+    return done(*r);
+  }
+  Result r;
+  r.status = Status::kNoPath;
+  r.reason = "no path on the grid (widen it or reduce the safe CPA): " + notes;
+  r.stats.iterations = expanded;
+  r.stats.edge_checks = checks;
+  return done(r);
+}
+
+std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams& c, const Request& rq, const Hooks& hooks,
+                                       const TurningTables& tt, std::string& notes, uint64_t& checks,
+                                       int& expanded) const {
   const ValidityChecker check(pb, c);
   const Objective objective(pb, rq.objective);
   const Search search{pb, c, p_, tt, check, objective, rq.budget, hooks};
   const Vec2 route = pb.goal.p - pb.start;
-  uint64_t checks = 0;
+  const std::string at = "at safe CPA " + fmt(c.safety_distance) + " m, ";  // every reason says which
 
   // Step 1: no danger on the pre-set route (the straight leg to the goal is available): keep it.
   const ColregLevel full = pb.colreg ? ColregLevel::kFull : ColregLevel::kNone;
   if (search.leg_ok(unit_of(pb.heading), pb.start, pb.goal.p, 0.0, true, full, checks) == ValidityChecker::kValid &&
       check.goal_heading_ok(route)) {
     Result r = finish(pb, {pb.start, pb.goal.p}, false, check, objective);
-    r.reason = "route clear: no manoeuvre (§3 Step 1)";
+    r.reason = "route clear at safe CPA " + fmt(c.safety_distance) + " m: no manoeuvre (§3 Step 1)";
     r.stats.edge_checks = checks;
     r.stats.nodes = 2;
-    return done(r);
+    return r;
   }
 
   // Steps 2-6 on both grids, at the strictest COLREG level that has a path (§6 of seed 000).
   std::vector<ColregLevel> levels{full};
   if (pb.colreg) levels = {ColregLevel::kFull, ColregLevel::kPinned17c, ColregLevel::kPinned, ColregLevel::kNone};
-  std::string notes;
-  int expanded = 0;
+  std::string relax_notes;
   for (const ColregLevel lv : levels) {
     const SideResult stb = search.run(+1, lv), port = search.run(-1, lv);
     expanded += stb.expanded + port.expanded;
     checks += stb.checks + port.checks;
     if (!stb.ok && !port.ok) {
-      notes += std::string(notes.empty() ? "" : "; ") + level_name(lv) + ": starboard: " + stb.why + "; port: " + port.why;
+      const std::string n = at + level_name(lv) + ": starboard: " + stb.why + "; port: " + port.why;
+      notes += (notes.empty() ? "" : "; ") + n;
+      relax_notes += (relax_notes.empty() ? "" : "; ") + n;
       if (stb.colreg_rejects + port.colreg_rejects == 0) break;  // COLREG refused nothing: relaxing it cannot help
       continue;
     }
     // Starboard first; the port alternative only when it costs less (§3, after eq. 5).
     const bool take_port = !stb.ok || (port.ok && port.cost < stb.cost);
     const SideResult& s = take_port ? port : stb;
-    Result r = finish(pb, s.pts, lv != full, check, objective);
-    r.stats.iterations = r.stats.iterations_compliant = expanded;
-    r.stats.nodes = static_cast<int>(s.pts.size());
-    r.stats.first_solution_iteration = expanded;
-    r.stats.edge_checks = checks;
-    r.reason = std::string(take_port ? "port" : "starboard") + " grid, cost " + fmt(s.cost) + " (other side: " +
-               (take_port ? (stb.ok ? "cost " + fmt(stb.cost) : stb.why) : (port.ok ? "cost " + fmt(port.cost) : port.why)) + ")";
-    if (lv != full) r.reason = std::string("relaxed to ") + level_name(lv) + ": " + r.reason + "; " + notes;
     // Every leg was checked by the same checker at the same times: a failure here is a bug.
     if (const std::string v = check.check_path(s.pts, false); !v.empty()) {
       Result bad;
       bad.status = Status::kNoPath;
       bad.reason = "dijkstra-sv path failed the checker: " + v;
-      return done(bad);
+      return bad;
     }
-    return done(r);
+    Result r = finish(pb, s.pts, lv != full, check, objective);
+    r.stats.iterations = r.stats.iterations_compliant = expanded;
+    r.stats.nodes = static_cast<int>(s.pts.size());
+    r.stats.first_solution_iteration = expanded;
+    r.stats.edge_checks = checks;
+    r.reason = std::string(take_port ? "port" : "starboard") + " grid " + at + "cost " + fmt(s.cost) + " (other side: " +
+               (take_port ? (stb.ok ? "cost " + fmt(stb.cost) : stb.why) : (port.ok ? "cost " + fmt(port.cost) : port.why)) + ")";
+    if (lv != full) r.reason = std::string("relaxed to ") + level_name(lv) + ": " + r.reason + "; " + relax_notes;
+    return r;
   }
-  Result r;
-  r.status = Status::kNoPath;
-  r.reason = "no path at safe CPA " + fmt(c.safety_distance) + " m on the grid (reduce it or widen the grid): " + notes;
-  r.stats.iterations = expanded;
-  r.stats.edge_checks = checks;
-  return done(r);
+  return std::nullopt;
 }
 
 }  // namespace mpgc::opp

@@ -25,7 +25,7 @@ namespace mpgc::opp {
 struct DsvParams {
   std::string tables;               // file of `./mpgc trial tables` for the own ship ("" = none)
   int rows = 12;                    // [-] grid rows ahead (the last is the target row), Fig. 5
-  int cols = 10;                    // [-] grid columns to one side (starboard; the port grid mirrors it)
+  int cols = 20;                    // [-] grid columns to one side (starboard; the port grid mirrors it)
   double row_m = 500.0;             // [m] spacing along the course
   double col_m = 250.0;             // [m] spacing across the course
   int area_rows = 3;                // [-] area of steady rudder setting: rows ahead (§3 Step 2)
@@ -33,6 +33,8 @@ struct DsvParams {
   double departure_weight = 0.5;    // [1/m] cost per metre of cross-track at every vertex reached (§3)
   double rudder_change_weight = 300.0;  // [1/rad] cost per radian of rudder change between areas (§3)
   double return_smoothness = 20.0;  // [%] d1 of eq. 5
+  double safe_cpa = 0.0;           // [m] the paper's safe CPA as d_safety when larger (0: the problem's)
+  bool arc_state = false;          // next area from the arc's eq. 4 state (false: the leg's course, r = 0)
   bool inverse_bilinear = false;    // state at a vertex by the quad's inverse bilinear map (false: eq. 4)
   void validate() const;            // throws std::invalid_argument naming the field
 };
@@ -50,6 +52,9 @@ class DijkstraSv final : public Planner {
   // The tables of params().tables, loaded once per file name (under mu_: concurrent solves share
   // them read-only); "" or the loader's message.
   std::string ensure_tables(std::shared_ptr<const TurningTables>& out);
+  // Steps 1-6 at the constraints c; nullopt with `notes` extended when the grid has no path.
+  std::optional<Result> plan(const Problem& pb, const ConstraintParams& c, const Request& rq, const Hooks& hooks,
+                             const TurningTables& tt, std::string& notes, uint64_t& checks, int& expanded) const;
   std::mutex mu_;
   DsvParams p_;
   std::shared_ptr<const TurningTables> tables_;
