@@ -188,6 +188,22 @@ TEST(DijkstraSv, SafeCpaWidensThePassing) {
   EXPECT_NE(wide.reason.find("at safe CPA 1296.4 m"), std::string::npos) << wide.reason;
 }
 
+TEST(DijkstraSv, PortAlternativeWhenStarboardIsBlocked) {
+  // Land across the route and far out to starboard: only the port grid passes it (§3).
+  Case k;
+  k.set_discs({{{5000, 3000}, 3200}});
+  const opp::Result r = solve(k);
+  ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+  EXPECT_EQ(r.reason.rfind("port grid", 0), 0u) << r.reason;
+  for (const auto& w : r.path) EXPECT_LE(w.p.y, 1e-6);
+  // Independent clearance: dense samples of every leg keep d_safety from the disc.
+  for (size_t i = 0; i + 1 < r.path.size(); ++i)
+    for (int s = 0; s <= 200; ++s) {
+      const opp::Vec2 x = r.path[i].p + (s / 200.0) * (r.path[i + 1].p - r.path[i].p);
+      EXPECT_GE(opp::norm(x - opp::Vec2{5000, 3000}) - 3200, kSafe - 1e-6);
+    }
+}
+
 TEST(DijkstraSv, BlockedGridHasNoPathWithAReason) {
   Case k;
   k.set_discs({{{5000, 0}, 2500}});  // wider than the grid (10 x 250 m) plus d_safety on both sides
