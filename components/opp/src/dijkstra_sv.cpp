@@ -69,10 +69,14 @@ struct Search {
   SideResult run(int side, ColregLevel level) const {
     SideResult out;
     const double u = pb.speed, u_tab = tt.approach_speed();
-    const Vec2 f = unit_of(pb.heading), stb{-f.y, f.x};
     const Vec2 route = pb.goal.p - pb.start;
     const double route_len = norm(route);
     const Vec2 ur = (1.0 / route_len) * route;
+    // Fig. 5: the grid along the current course. A ship far off the route's course (mid-manoeuvre,
+    // re-planned from where it is) would lay it away from the goal, with no target row before it:
+    // then along the route (the first leg still answers to the turn limit from the heading).
+    const Vec2 h = unit_of(pb.heading);
+    const Vec2 f = dot(h, ur) >= std::cos(p.axis_tolerance) ? h : ur, stb{-f.y, f.x};
     // The target row lies before the goal: a grid past it would plan beyond the voyage's end.
     const int R = std::min(p.rows, static_cast<int>(std::floor(dot(route, f) / p.row_m)));
     if (R < 1) {
@@ -91,7 +95,7 @@ struct Search {
     root.cost = 0.0;
     // The problem carries no yaw rate: the ship is taken on a steady course, rudder amidships.
     root.s = {pb.start.x, pb.start.y, pb.heading, 0.0, u_tab, 0.0};
-    root.dir = f;
+    root.dir = h;
     using Item = std::pair<double, int>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
     open.push({0.0, 0});
@@ -255,6 +259,8 @@ void DsvParams::validate() const {
   need(std::isfinite(departure_weight) && departure_weight >= 0.0, "plan.dsv.departure_weight must be finite and >= 0");
   need(std::isfinite(rudder_change_weight) && rudder_change_weight >= 0.0,
        "plan.dsv.rudder_change_weight must be finite and >= 0");
+  need(std::isfinite(axis_tolerance) && axis_tolerance >= 0.0 && axis_tolerance <= 3.15,
+       "plan.dsv.axis_tolerance must be in [0, pi] rad");
   need(std::isfinite(safe_cpa) && safe_cpa >= 0.0, "plan.dsv.safe_cpa must be finite and >= 0 m");
   need(std::isfinite(return_smoothness) && return_smoothness >= 0.0 && return_smoothness <= 1000.0,
        "plan.dsv.return_smoothness must be in [0, 1000] %");
@@ -277,6 +283,8 @@ void DijkstraSv::declare(rt::ParamSet& ps) {
          "dijkstra-sv: d1 of eq. 5, the return to the route");
   ps.add("plan.dsv.safe_cpa", &p_.safe_cpa, 0.0, "m", 0.0, 1e5,
          "dijkstra-sv: the paper's safe CPA, used as d_safety when larger (0: the problem's d_safety)");
+  ps.add("plan.dsv.axis_tolerance", &p_.axis_tolerance, geo::deg2rad(45.0), "rad", 0.0, geo::kPi,
+         "dijkstra-sv: the grid along the heading while it is within this of the route's course, else along the route");
   ps.add("plan.dsv.arc_state", &p_.arc_state, false,
          "dijkstra-sv: the next area starts from the arc's state by eq. 4 (false: on the leg's course, as guidance sails it)");
   ps.add("plan.dsv.inverse_bilinear", &p_.inverse_bilinear, false,

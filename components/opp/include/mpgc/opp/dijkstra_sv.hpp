@@ -34,6 +34,7 @@ struct DsvParams {
   double rudder_change_weight = 300.0;  // [1/rad] cost per radian of rudder change between areas (§3)
   double return_smoothness = 20.0;  // [%] d1 of eq. 5
   double safe_cpa = 0.0;           // [m] the paper's safe CPA as d_safety when larger (0: the problem's)
+  double axis_tolerance = 0.7853981633974483;  // [rad] grid along the heading within this of the route's course, else along the route
   bool arc_state = false;          // next area from the arc's eq. 4 state (false: the leg's course, r = 0)
   bool inverse_bilinear = false;    // state at a vertex by the quad's inverse bilinear map (false: eq. 4)
   void validate() const;            // throws std::invalid_argument naming the field
