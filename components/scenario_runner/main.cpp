@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -95,6 +96,14 @@ class DomainLease {
  private:
   int fd_ = -1, id_ = 0;
 };
+
+// [s] user + system CPU time of this process so far.
+double own_cpu_s() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return static_cast<double>(r.ru_utime.tv_sec + r.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(r.ru_utime.tv_usec + r.ru_stime.tv_usec);
+}
 
 pid_t start_launcher(const std::string& launch, int domain, const std::string& log_path, const std::string& secure) {
   const std::string exe = (fs::canonical("/proc/self/exe").parent_path() / "mpgc_launch").string();
@@ -328,6 +337,7 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
 
   std::string end_reason;
   const auto wall_start = Steady::now();
+  const double cpu_start = own_cpu_s();
   auto last_print = wall_start;
   c.every(o.record_period, [&] {
     if (!have_truth) return;
@@ -420,6 +430,17 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
   }
 
   out.metrics = rec.evaluate(wall);
+  {
+    std::ifstream log(dir / "components.log");
+    std::stringstream text;
+    text << log.rdbuf();
+    out.metrics.components = sr::component_usage(text.str());
+    // The runner itself (lockstep clock, recording for the evaluation) during this scenario; its
+    // peak is the process's so far (a suite runs in one process).
+    rusage self{};
+    getrusage(RUSAGE_SELF, &self);
+    out.metrics.components.push_back({"scenario_runner", static_cast<double>(self.ru_maxrss) / 1024.0, own_cpu_s() - cpu_start});
+  }
   sr::ReportOptions ro;
   ro.scenario = s.name;
   ro.length_unit = s.plot_in_lpp ? s.lpp : 1.0;

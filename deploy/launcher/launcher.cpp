@@ -7,6 +7,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/types.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -121,6 +122,16 @@ std::string describe(int status) {
   if (WIFEXITED(status)) return "exited with code " + std::to_string(WEXITSTATUS(status));
   if (WIFSIGNALED(status)) return std::string("killed by signal ") + strsignal(WTERMSIG(status));
   return "stopped";
+}
+
+// What a component used, from the kernel's account at its end (read by the scenario runner into
+// metrics.json: issue 20, where the wall time and the memory go).
+std::string usage(const rusage& ru) {
+  const double cpu = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+                     1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+  char b[96];
+  std::snprintf(b, sizeof b, " (peak RSS %.1f MB, CPU %.2f s)", static_cast<double>(ru.ru_maxrss) / 1024.0, cpu);
+  return b;
 }
 
 int64_t steady_ns() {
@@ -329,7 +340,8 @@ int main(int argc, char** argv) {
     // or a subreaper the launcher inherits what its components left behind, and must reap it).
     for (;;) {
       int status = 0;
-      const pid_t w = waitpid(-1, &status, WNOHANG);
+      rusage ru{};
+      const pid_t w = wait4(-1, &status, WNOHANG, &ru);
       if (w <= 0) break;
       auto it = std::find_if(procs.begin(), procs.end(), [w](const Proc& q) { return q.pid == w; });
       if (it == procs.end()) continue;
@@ -341,7 +353,7 @@ int main(int argc, char** argv) {
       }
       p.pid = -1;
       const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-      emit("launch", p.spec.name + " " + describe(status));
+      emit("launch", p.spec.name + " " + describe(status) + usage(ru));
       const bool may_restart = !stopping && p.restarts < p.spec.max_restarts &&
                                (p.spec.restart == "always" || (p.spec.restart == "on-failure" && !ok));
       if (health) {

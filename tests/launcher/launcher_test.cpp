@@ -127,7 +127,7 @@ components:
   EXPECT_EQ(l.wait_exit(20.0), 0) << l.output();
   const std::string& out = l.output();
   EXPECT_NE(out.find("[talker] "), std::string::npos);
-  EXPECT_NE(out.find("[launch] talker exited with code 0"), std::string::npos) << out;
+  EXPECT_NE(out.find("[launch] talker exited with code 0 (peak RSS "), std::string::npos) << out;
   EXPECT_NE(out.find("[launch] listener exited with code 0"), std::string::npos) << out;
   EXPECT_NE(out.find("[listener] "), std::string::npos);
   EXPECT_NE(out.find("all components stopped cleanly"), std::string::npos);

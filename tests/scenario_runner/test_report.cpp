@@ -66,6 +66,7 @@ TEST(Report, WritesMetricsCsvAndFigures) {
   const auto run = paper_like();
   auto m = sr::evaluate(run, sr::EvaluationParams::scaled_to(kLpp), {});
   m.wall_s = 12.5;
+  m.components = {{"opp", 14.5, 60.25}};
   sr::ReportOptions opt;
   opt.scenario = "paper_like_s1";
   opt.length_unit = kLpp;
@@ -95,6 +96,8 @@ TEST(Report, WritesMetricsCsvAndFigures) {
   EXPECT_DOUBLE_EQ(j["tracking_rmse_m"].as<double>(), m.tracking_rmse);
   EXPECT_DOUBLE_EQ(j["wall_s"].as<double>(), 12.5);
   EXPECT_DOUBLE_EQ(j["sim_s"].as<double>(), 6000.0);
+  EXPECT_DOUBLE_EQ(j["components"]["opp"]["peak_rss_mb"].as<double>(), 14.5);
+  EXPECT_DOUBLE_EQ(j["components"]["opp"]["cpu_s"].as<double>(), 60.25);
   // Near misses: target 2 passes at 2086 m, above r_nm = 5 Lpp = 1600 m: none.
   EXPECT_DOUBLE_EQ(j["near_misses"]["r_nm_m"].as<double>(), 1600.0);
   EXPECT_EQ(j["near_misses"]["count"].as<int>(), 0);
@@ -192,4 +195,25 @@ TEST(Report, BadOptionsAndUnwritableDirectoryAreErrors) {
   std::ostringstream s;
   EXPECT_THROW(sr::write_trajectory_svg(s, run, m, opt), std::invalid_argument);
   EXPECT_THROW(sr::write_report("/proc/mpgc_no_such_dir/x", run, m, {}), std::runtime_error);
+}
+
+// The launcher's account of each process (issue 20: where the wall time and the memory go).
+TEST(Report, ComponentUsageFromTheLauncherLog) {
+  const std::string log =
+      "[launch] started opp (pid 12): /bin/mpgc_opp\n"
+      "[opp] 04:58:31.686 info plan 1 (first plan): ok\n"
+      "[launch] opp exited with code 0 (peak RSS 14.2 MB, CPU 61.50 s)\n"
+      "[launch] ship_simulator killed by signal Killed (peak RSS 12.0 MB, CPU 3.25 s)\n"
+      "[launch] opp exited with code 0 (peak RSS 20.5 MB, CPU 1.50 s)\n"  // restarted: max, sum
+      "[launch] broken exited with code 0 (peak RSS nan MB, CPU 1 s)\n"
+      "[launch] garbled exited (peak RSS twelve MB, CPU 1 s)\n"
+      "[opp] [launch] fake exited with code 0 (peak RSS 1.0 MB, CPU 1.00 s)\n";
+  const auto u = sr::component_usage(log);
+  ASSERT_EQ(u.size(), 2u);
+  EXPECT_EQ(u[0].name, "opp");
+  EXPECT_DOUBLE_EQ(u[0].peak_rss_mb, 20.5);
+  EXPECT_DOUBLE_EQ(u[0].cpu_s, 63.0);
+  EXPECT_EQ(u[1].name, "ship_simulator");
+  EXPECT_DOUBLE_EQ(u[1].peak_rss_mb, 12.0);
+  EXPECT_TRUE(sr::component_usage("").empty());
 }

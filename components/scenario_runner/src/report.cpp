@@ -1,5 +1,6 @@
 #include "mpgc/scenario_runner/report.hpp"
 
+#include <algorithm>
 #include <map>
 #include <cmath>
 #include <cstdio>
@@ -68,6 +69,10 @@ void write_metrics_json(std::ostream& o, const Metrics& m, const ReportOptions& 
   j["tracking_rmse_m"] = number(m.tracking_rmse);
   j["wall_s"] = number(m.wall_s);
   j["sim_s"] = number(m.sim_s);
+  Json comps = Json::object();
+  for (const ComponentUsage& c : m.components)
+    comps[c.name] = {{"peak_rss_mb", number(c.peak_rss_mb)}, {"cpu_s", number(c.cpu_s)}};
+  j["components"] = comps;
   j["evaluation_scale"] = number(m.scale);
   Json encounters = Json::array();
   for (const EncounterResult& e : m.encounters) {
@@ -212,6 +217,32 @@ std::vector<std::string> write_report(const std::string& dir, const RunRecord& r
   write("trajectory.svg", [&](std::ostream& s) { write_trajectory_svg(s, run, m, opt); });
   write("dtc.svg", [&](std::ostream& s) { write_dtc_svg(s, run, m, opt); });
   return paths;
+}
+
+std::vector<ComponentUsage> component_usage(const std::string& launcher_log) {
+  std::vector<ComponentUsage> out;
+  std::istringstream in(launcher_log);
+  const std::string tag = "[launch] ";
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(tag, 0) != 0) continue;
+    const auto open = line.rfind(" (peak RSS ");
+    if (open == std::string::npos) continue;
+    const auto sp = line.find(' ', tag.size());
+    if (sp == std::string::npos || sp >= open) continue;
+    const std::string name = line.substr(tag.size(), sp - tag.size());
+    double rss = 0, cpu = 0;
+    if (std::sscanf(line.c_str() + open, " (peak RSS %lf MB, CPU %lf s)", &rss, &cpu) != 2 || !std::isfinite(rss) ||
+        !std::isfinite(cpu) || rss < 0 || cpu < 0)
+      continue;
+    auto it = std::find_if(out.begin(), out.end(), [&](const ComponentUsage& c) { return c.name == name; });
+    if (it == out.end()) {
+      out.push_back({name, rss, cpu});
+    } else {
+      it->peak_rss_mb = std::max(it->peak_rss_mb, rss);
+      it->cpu_s += cpu;
+    }
+  }
+  return out;
 }
 
 }  // namespace mpgc::scenario_runner

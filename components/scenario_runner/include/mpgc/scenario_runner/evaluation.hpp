@@ -290,6 +290,13 @@ struct PlanningStats {
   double max_ms = kNaN;     // [ms]
 };
 
+// One process of the run as the kernel accounted it when it ended (the launcher's log).
+struct ComponentUsage {
+  std::string name;
+  double peak_rss_mb = kNaN;  // [MB] maximum resident set size
+  double cpu_s = kNaN;        // [s] user + system CPU time
+};
+
 struct TargetDistance {
   std::uint32_t target_id = 0;
   double min_distance = kNaN;  // [m]
@@ -327,6 +334,7 @@ struct Metrics {
   double tracking_rmse = kNaN;  // [m] RMS distance to the active path (NaN before any plan)
   double sim_s = 0.0;           // [s] simulated duration
   double wall_s = kNaN;         // [s] wall time of the run (set by the runner)
+  std::vector<ComponentUsage> components;  // set by the runner from the launcher's log
 
   double scale = 1.0;  // [-] EvaluationParams::scale used
   std::vector<EncounterResult> encounters;  // one per target, in target order

@@ -36,13 +36,19 @@ struct ReportOptions {
 // min_distance_m {overall, fixed, targets {"<id>": m}}, safety_distance_m, safety_violation_s,
 // near_misses {r_nm_m, count, targets [ids]}, likely_collisions {r_col_cpa_m, count, targets [ids]},
 // path_length_m, straight_line_m, planning_ms {median, p95, max}, replans, relaxed_plans,
-// no_path_plans, tracking_rmse_m, wall_s, sim_s, evaluation_scale, encounters[] {target_id,
+// no_path_plans, tracking_rmse_m, wall_s, sim_s, evaluation_scale, components {"<name>":
+// {peak_rss_mb, cpu_s}} (empty when the launcher's log had none), encounters[] {target_id,
 // encountered, situation, role, t_start_s, range_start_m, beta_start_deg, alpha_start_deg,
 // dcpa_start_m, cpa_m, t_cpa_s, passing_side, bow_crossing_m, t_manoeuvre_s, manoeuvre_side,
 // max_starboard_change_deg, max_port_change_deg, max_speed_reduction, verdicts {turned_starboard,
 // passed_port_to_port, not_crossed_ahead, kept_clear, held_course_and_speed: "pass"|"fail"|"n/a"},
 // t_hold_end_s, conflicting_obligation, compliant}.
 void write_metrics_json(std::ostream& out, const Metrics& m, const ReportOptions& opt);
+
+// The processes' usage from a launcher's log: its lines "[launch] NAME exited ... (peak RSS X MB,
+// CPU Y s)", in order; a name that ended twice (restarted) keeps the larger peak and the sum of
+// the CPU. Other lines, and malformed figures, are skipped.
+std::vector<ComponentUsage> component_usage(const std::string& launcher_log);
 
 // The near misses and likely collisions of the run summary, e.g. "near misses 2 (target 1 at
 // 1234.5 m, target 3 at 500.0 m; r_nm 1600.0 m), likely collisions 1 (target 3; r_col_cpa
