@@ -283,21 +283,32 @@ TEST(OppNode, AStandOnShipHoldsCourseAndSpeedUntilItMayAct) {
   EXPECT_EQ(opp::stand_on_hold(p, diverted).time, 0.0);
 }
 
-// Seed 000 §2: the speed is reduced when steering alone is not sufficient. In a canal too narrow
-// to overtake in (walls 1600 m apart, d_safety 500 m), a ship 2 km ahead sails the same way at
-// 1.5 m/s: at 5 m/s there is no path at all, at 25 % (1.25 m/s) the own ship follows it.
-TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
-  opp::NodeParams p = declared({"plan.max_iterations=4000", "plan.safety_distance=500", "plan.colreg_distance=2000"});
+namespace {
+// A canal too narrow to overtake in (walls 1600 m apart; d_safety 500 m), 12 km to the goal at
+// 5 m/s, and a ship 2 km ahead sailing the same way at 1.5 m/s.
+opp::DiscObstacles narrow_canal() {
   std::vector<opp::Disc> walls;
   for (double x = -2000; x <= 14000; x += 200) {
     walls.push_back({{x, -900}, 100});
     walls.push_back({{x, 900}, 100});
   }
-  const opp::DiscObstacles canal(walls);
+  return opp::DiscObstacles(walls);
+}
+opp::Setup ship_ahead_in(const opp::DiscObstacles& canal, const opp::NodeParams& p) {
   const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
   const opp::GoalSpec goal{{12000, 0}, std::nan(""), 0, 5, 500, true};
   const std::vector<opp::Target> tg = {{7, {2000, 0}, {1.5, 0}, {}}};
-  const opp::Setup s = opp::build_setup(p, own, goal, tg, {&canal, std::nullopt}, 0);
+  return opp::build_setup(p, own, goal, tg, {&canal, std::nullopt}, 0);
+}
+}  // namespace
+
+// Seed 000 §2: the speed is reduced when steering alone is not sufficient. In a canal too narrow
+// to overtake in (walls 1600 m apart, d_safety 500 m), a ship 2 km ahead sails the same way at
+// 1.5 m/s: at 5 m/s there is no path at all, at 25 % (1.25 m/s) the own ship follows it.
+TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
+  opp::NodeParams p = declared({"plan.max_iterations=4000", "plan.safety_distance=500", "plan.colreg_distance=2000"});
+  const opp::DiscObstacles canal = narrow_canal();
+  const opp::Setup s = ship_ahead_in(canal, p);
   auto planner = opp::make_planner("rrtstar");
   const opp::NodePlan np = opp::plan_node(*planner, p, s, p.objective, {}, {}, {});
   ASSERT_EQ(np.result.status, opp::Status::kOk) << np.result.reason;
@@ -317,16 +328,8 @@ TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
 // request and the seed alone, bit for bit, and the same as each speed solved on its own.
 TEST(OppNode, SpeedTriesSolvedAtOnceGiveTheSamePlan) {
   opp::NodeParams p = declared({"plan.max_iterations=3000", "plan.safety_distance=500", "plan.colreg_distance=2000"});
-  std::vector<opp::Disc> walls;
-  for (double x = -2000; x <= 14000; x += 200) {
-    walls.push_back({{x, -900}, 100});
-    walls.push_back({{x, 900}, 100});
-  }
-  const opp::DiscObstacles canal(walls);
-  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
-  const opp::GoalSpec goal{{12000, 0}, std::nan(""), 0, 5, 500, true};
-  const std::vector<opp::Target> tg = {{7, {2000, 0}, {1.5, 0}, {}}};
-  const opp::Setup s = opp::build_setup(p, own, goal, tg, {&canal, std::nullopt}, 0);
+  const opp::DiscObstacles canal = narrow_canal();
+  const opp::Setup s = ship_ahead_in(canal, p);
   auto planner = opp::make_planner("rrtstar");
   const opp::NodePlan a = opp::plan_node(*planner, p, s, p.objective, {}, {}, {});
   const opp::NodePlan b = opp::plan_node(*planner, p, s, p.objective, {}, {}, {});
