@@ -192,6 +192,28 @@ TEST(ApfVo, VoTurnsToStarboardHeadOnAndWhenGivingWayCrossing) {
   EXPECT_FALSE(opp::vo_decide(far, c, vp, far.start, 0.0, 5.0, 0.0).risk);  // TCPA 2000 s > 900 s
 }
 
+// COLREG not required (a *_nocolreg scenario): no rule picks the side and no ship stands on; the
+// smaller alteration out of the VO is taken.
+TEST(ApfVo, VoWithoutColregTakesTheSmallerAlterationAndNeverStandsOn) {
+  const opp::ConstraintParams c;
+  const opp::VoParams vp;
+  // Head-on, 50 m to starboard of the own course line: port (starboard to starboard) is shorter.
+  opp::Problem head_on = open_water({{1, {8000, 50}, {-5, 0}}});
+  head_on.colreg = false;
+  const opp::VoDecision h = opp::vo_decide(head_on, c, vp, head_on.start, 0.0, 5.0, 0.0);
+  ASSERT_TRUE(h.risk);
+  EXPECT_EQ(h.side, opp::VoSide::kPort);
+  EXPECT_LT(h.course, 0.0);
+  EXPECT_GE(dcpa_on(head_on, h.course, head_on.targets[0]), vp.dcpa_factor * c.safety_distance);
+  // A crossing ship on the port side: without COLREG the own ship does not stand on, it keeps clear.
+  opp::Problem stand_on = open_water({{3, {4000, -4000}, {0, 5}}});
+  stand_on.colreg = false;
+  const opp::VoDecision s = opp::vo_decide(stand_on, c, vp, stand_on.start, 0.0, 5.0, 0.0);
+  ASSERT_TRUE(s.risk);
+  EXPECT_NE(s.side, opp::VoSide::kNone);
+  EXPECT_GE(dcpa_on(stand_on, s.course, stand_on.targets[0]), vp.dcpa_factor * c.safety_distance);
+}
+
 TEST(ApfVo, VoKeepsClearWhenOvertakingOnTheWiderSide) {
   const opp::ConstraintParams c;
   const opp::VoParams vp;
@@ -218,6 +240,27 @@ TEST(ApfVo, VoKeepsClearWhenOvertakingOnTheWiderSide) {
   double to_targets = 0;
   min_margin(right, {}, p, &to_targets);
   EXPECT_GE(to_targets, c.safety_distance - 1e-6);
+}
+
+// Stage 1 by the shared checker (plan.vo.checker_trigger): a slower ship 5.2 km on the port beam on
+// a nearly parallel course is, for the checker's per-leg model (eq. 16), overtaken, and the course
+// held crosses its route ahead of it; the rule sectors saw a crossing ship to stand on for, and the
+// refused course was sailed: every full-speed plan relaxed (seed 003 case, TS3 once its pinned
+// encounter was released). The decision follows the checker's encounter, and the plan is valid.
+TEST(ApfVo, CheckerRefusedCourseIsAvoidedAsTheCheckersEncounter) {
+  opp::ConstraintParams c;
+  c.safety_distance = 1852;
+  c.colreg_distance = 5556;
+  const opp::VoParams vp;
+  const opp::Problem pb = open_water({{3, {289, -5236}, {1.93, 0.146}}});
+  const opp::ValidityChecker check(pb, c);
+  ASSERT_EQ(check.moving(pb.start, 0.0, {463, 0}, 463, opp::ColregLevel::kFull), opp::ValidityChecker::kColreg);
+  const opp::VoDecision d = opp::vo_decide(pb, c, vp, pb.start, 0.0, 5.0, 0.0, 0);
+  EXPECT_EQ(d.situation, mpgc::colreg::EncounterType::kOvertaking);
+  EXPECT_EQ(d.side, opp::VoSide::kStarboard);  // away from its route
+  opp::ApfVo planner;
+  const opp::Result r = solve(planner, pb, c);
+  EXPECT_EQ(r.status, opp::Status::kOk) << r.reason;
 }
 
 TEST(ApfVo, HeadOnPlanPassesPortToPort) {

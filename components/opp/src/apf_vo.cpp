@@ -7,6 +7,7 @@
 
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/geo/angles.hpp"
+#include "mpgc/opp/colreg.hpp"
 #include "mpgc/opp/validity.hpp"
 #include "mpgc/runtime/params.hpp"
 
@@ -194,10 +195,15 @@ VoDecision vo_decide(const Problem& pb, const ConstraintParams& c, const VoParam
   if (!d.risk) return d;
   const Target& tg = pb.targets[d.target];
   const Vec2 y = tg.p + t * tg.v, v = u * unit_of(course0);
-  // The encounter: the obligation pinned for it (EncounterMemory), else the rule sectors of the
-  // project's colreg::assess (the risk is the VO's own, eq. 18).
-  d.situation = tg.pinned.obligation != Obligation::kNone
-                    ? tg.pinned.obligation
+  // The encounter: the obligation pinned for it (EncounterMemory); for a course the shared checker
+  // refuses (forced), the encounter of its per-leg model (§5, eq. 16-18), which judged the course;
+  // else the rule sectors of the project's colreg::assess (the risk is the VO's own, eq. 18). The
+  // sectors alone saw TS3 of the seed 003 case, overtaken 5 km on the port beam, as crossing, stood
+  // on, and sailed the refused course: every full-speed plan relaxed, the ship trailed at 25 %.
+  const Obligation per_leg = forced >= 0 ? colreg_check(x, v, y, tg.v, c.colreg).situation : Obligation::kNone;
+  d.situation = tg.pinned.obligation != Obligation::kNone ? tg.pinned.obligation
+                : per_leg != Obligation::kNone
+                    ? per_leg
                     : colreg::assess({x.x, x.y, v.x, v.y}, {y.x, y.y, tg.v.x, tg.v.y}, colreg::ColregParams{}).sector;
   // The reachable courses within max_change each side (constraint 2) outside every VO: the first
   // free one is C1 (eq. 19, the VO's edge on that side), the free courses beyond it the set VA.
@@ -216,15 +222,24 @@ VoDecision vo_decide(const Problem& pb, const ConstraintParams& c, const VoParam
   d.width_port = width[1];
   using E = colreg::EncounterType;
   int s = 0;
-  switch (d.situation) {
-    case E::kCrossingStandOn:
-    case E::kOvertaken:
-      return d;  // constraint (5): the stand-on ship keeps her course and speed
-    case E::kOvertaking:
-      s = width[0] >= width[1] ? 0 : 1;  // eq. 21
-      break;
-    default:
-      s = 0;  // head-on (rule 14), crossing give-way (rule 15), and a risk outside the sectors
+  if (!pb.colreg) {
+    // COLREG not required (seed 000 §6): no rule picks the side or keeps a stand-on ship on her
+    // course; the side whose VO edge C1 (eq. 19) is the smaller alteration, starboard when equal.
+    const double inf = std::numeric_limits<double>::infinity();
+    const double a0 = std::isnan(c1[0]) ? inf : std::fabs(geo::angle_diff(c1[0], course0));
+    const double a1 = std::isnan(c1[1]) ? inf : std::fabs(geo::angle_diff(c1[1], course0));
+    s = a1 < a0 ? 1 : 0;
+  } else {
+    switch (d.situation) {
+      case E::kCrossingStandOn:
+      case E::kOvertaken:
+        return d;  // constraint (5): the stand-on ship keeps her course and speed
+      case E::kOvertaking:
+        s = width[0] >= width[1] ? 0 : 1;  // eq. 21
+        break;
+      default:
+        s = 0;  // head-on (rule 14), crossing give-way (rule 15), and a risk outside the sectors
+    }
   }
   const double sign = s == 0 ? 1.0 : -1.0;
   d.side = s == 0 ? VoSide::kStarboard : VoSide::kPort;

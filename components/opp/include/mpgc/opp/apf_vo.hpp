@@ -68,7 +68,8 @@ std::vector<Vec2> douglas_peucker(const std::vector<Vec2>& pts, double epsilon,
 
 // Which side the modified VO passes a target on (stage 2). Starboard for head-on and crossing
 // give-way (rules 14-15), eq. 21 when overtaking (the wider avoidance set, starboard on a tie),
-// none when standing on (constraint 5) or there is no risk.
+// none when standing on (constraint 5) or there is no risk. With COLREG not required
+// (Problem::colreg false): the side of the smaller alteration to the VO's edge, for every target.
 enum class VoSide { kNone, kStarboard, kPort };
 struct VoDecision {
   VoSide side = VoSide::kNone;
@@ -81,7 +82,8 @@ struct VoDecision {
 };
 // Own ship at x at time t (targets at eq. 3 positions), speed u on course0. `forced` >= 0: that
 // target decides as a risk even outside its VO (the shared checker refused the course held for
-// it: an obligation pinned for the encounter, VoParams::checker_trigger).
+// it: an obligation pinned for the encounter, VoParams::checker_trigger); unpinned, its encounter
+// is the one of the checker's per-leg model (colreg_check), which refused the course.
 VoDecision vo_decide(const Problem& pb, const ConstraintParams& c, const VoParams& p, Vec2 x, double t, double u,
                      double course0, int forced = -1);
 
