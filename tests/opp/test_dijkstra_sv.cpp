@@ -204,6 +204,21 @@ TEST(DijkstraSv, PortAlternativeWhenStarboardIsBlocked) {
     }
 }
 
+TEST(DijkstraSv, HeadingFarOffTheRouteStillLeadsToTheGoal) {
+  // Heading east with the goal north (mid-manoeuvre): the straight leg turns 90 deg > max_turn; a
+  // grid along the heading would have no row before the goal, so it lies 45 deg off the route.
+  Case k;
+  k.pb.heading = geo::kPi / 2;
+  const opp::Result r = solve(k);
+  ASSERT_EQ(r.status, opp::Status::kOk) << r.reason;
+  EXPECT_EQ(opp::ValidityChecker(k.pb, k.c).check_path([&] {
+    std::vector<opp::Vec2> v;
+    for (const auto& w : r.path) v.push_back(w.p);
+    return v;
+  }(), true), "");
+  EXPECT_EQ(r.path.back().p.x, 15000.0);
+}
+
 TEST(DijkstraSv, BlockedGridHasNoPathWithAReason) {
   Case k;
   k.set_discs({{{5000, 0}, 2500}});  // wider than the grid (10 x 250 m) plus d_safety on both sides

@@ -74,9 +74,12 @@ struct Search {
     const Vec2 ur = (1.0 / route_len) * route;
     // Fig. 5: the grid along the current course. A ship far off the route's course (mid-manoeuvre,
     // re-planned from where it is) would lay it away from the goal, with no target row before it:
-    // then along the route (the first leg still answers to the turn limit from the heading).
+    // then at axis_tolerance from the route's course on the heading's side, so that the grid leads
+    // towards the goal and its first legs stay within the turn limit from the heading.
     const Vec2 h = unit_of(pb.heading);
-    const Vec2 f = dot(h, ur) >= std::cos(p.axis_tolerance) ? h : ur, stb{-f.y, f.x};
+    const double off = std::clamp(std::atan2(cross(ur, h), dot(ur, h)), -p.axis_tolerance, p.axis_tolerance);
+    const Vec2 f{ur.x * std::cos(off) - ur.y * std::sin(off), ur.x * std::sin(off) + ur.y * std::cos(off)};
+    const Vec2 stb{-f.y, f.x};
     // The target row lies before the goal: a grid past it would plan beyond the voyage's end.
     const int R = std::min(p.rows, static_cast<int>(std::floor(dot(route, f) / p.row_m)));
     if (R < 1) {
@@ -184,10 +187,21 @@ struct Search {
       // d1 doubled while the return is not available and R is still before the goal: a longer,
       // smoother return ("the longer the return, the higher the indicator") that the turn limit
       // and the targets may allow where d1 itself does not.
+      // Then the same after one row sailed parallel to the route: a last leg far to the grid's
+      // side turns back to R by more than the turn limit (eq. 2), the straightening leg halves it.
+      bool found = false;
+      for (int straighten = 0; straighten < 2 && !found; ++straighten)
       for (double d1 = p.return_smoothness;; d1 = std::max(2.0 * d1, 10.0)) {
         const double r = (100.0 + d1) / 100.0 * norm(ve - pb.start);
         std::vector<Vec2> back;
-        if (r < route_len - 1e-6) back.push_back(pb.start + r * ur);
+        if (straighten) {
+          const Vec2 e2 = ve + p.row_m * ur;
+          if (dot(e2 - pb.start, ur) >= route_len - 1e-6) break;  // would pass the goal
+          back.push_back(e2);
+        }
+        const Vec2 from = back.empty() ? ve : back.back();
+        const bool has_r = r < route_len - 1e-6 && r > dot(from - pb.start, ur);  // R ahead, before the goal
+        if (has_r) back.push_back(pb.start + r * ur);
         back.push_back(pb.goal.p);
         Vec2 a = ve, dir = E.dir;
         double len = E.len, cost = E.cost;
@@ -214,6 +228,7 @@ struct Search {
           a = b;
         }
         if (ok) {
+          found = true;
           if (cost < out.cost) {
             out.ok = true;
             out.cost = cost;
@@ -224,7 +239,7 @@ struct Search {
           }
           break;
         }
-        if (back.size() == 1) break;  // already straight to the goal
+        if (!has_r) break;  // already straight to the goal
       }
     }
     if (!out.ok)
@@ -284,7 +299,7 @@ void DijkstraSv::declare(rt::ParamSet& ps) {
   ps.add("plan.dsv.safe_cpa", &p_.safe_cpa, 0.0, "m", 0.0, 1e5,
          "dijkstra-sv: the paper's safe CPA, used as d_safety when larger (0: the problem's d_safety)");
   ps.add("plan.dsv.axis_tolerance", &p_.axis_tolerance, geo::deg2rad(45.0), "rad", 0.0, geo::kPi,
-         "dijkstra-sv: the grid along the heading while it is within this of the route's course, else along the route");
+         "dijkstra-sv: the grid along the heading while it is within this of the route's course, else this off the route");
   ps.add("plan.dsv.arc_state", &p_.arc_state, false,
          "dijkstra-sv: the next area starts from the arc's state by eq. 4 (false: on the leg's course, as guidance sails it)");
   ps.add("plan.dsv.inverse_bilinear", &p_.inverse_bilinear, false,
