@@ -262,6 +262,16 @@ opp::Scenario with_goal_edges(opp::Scenario s, bool on) {
   return s;
 }
 
+// Our rows of the race, before OMPL's: ours (informed sampling, goal edges from goal samples only:
+// like for like with OMPL's InformedRRTstar), the same without informed sampling, and with our
+// default goal edges from every new node.
+constexpr size_t kOurs = 3;
+opp::Scenario ours_race(const opp::Scenario& s, bool informed, bool goal_edges) {
+  opp::Scenario o = with_goal_edges(s, goal_edges);
+  o.params.informed = informed;
+  return o;
+}
+
 struct Versus {
   double iter_ratio = NAN, cost_equal_iter = NAN;
 };
@@ -336,21 +346,20 @@ const std::vector<Ompl> kOmpl = {Ompl::kRRTstar, Ompl::kInformedRRTstar, Ompl::k
 
 // Every seed runs every planner back to back (load on the shared machine falls on all alike).
 Race race(const std::string& key, const opp::Scenario& s0, int seeds, const std::vector<double>& walls) {
-  const opp::Scenario off = with_goal_edges(s0, false), on = with_goal_edges(s0, true);
+  const opp::Scenario ours[kOurs] = {ours_race(s0, true, false), ours_race(s0, false, false), ours_race(s0, true, true)};
   Race rc;
   rc.key = key;
   rc.bound = opp::norm(s0.problem.goal.p - s0.problem.start);
   rc.walls = walls;
-  rc.planners = {"ours", "ours+goal edges"};
+  rc.planners = {"ours", "ours uninformed", "ours+goal edges"};
   for (Ompl k : kOmpl) rc.planners.push_back(std::string("OMPL ") + ompl_name(k));
   const size_t np = rc.planners.size();
   rc.cell.assign(np, std::vector<Cell>(walls.size()));
   for (size_t w = 0; w < walls.size(); ++w) {
     std::vector<std::vector<RunOut>> runs(np);
     for (int i = 0; i < seeds; ++i) {
-      runs[0].push_back(run_ours(off, 2000 + i, 2'000'000, walls[w], {}));
-      runs[1].push_back(run_ours(on, 2000 + i, 2'000'000, walls[w], {}));
-      for (size_t k = 0; k < kOmpl.size(); ++k) runs[2 + k].push_back(run_ompl(s0, 2'000'000'000, walls[w], {}, kOmpl[k]));
+      for (size_t k = 0; k < kOurs; ++k) runs[k].push_back(run_ours(ours[k], 2000 + i, 2'000'000, walls[w], {}));
+      for (size_t k = 0; k < kOmpl.size(); ++k) runs[kOurs + k].push_back(run_ompl(s0, 2'000'000'000, walls[w], {}, kOmpl[k]));
     }
     for (size_t p = 0; p < np; ++p) {
       const auto cost = col(runs[p], [](const RunOut& r) { return r.cost; });
@@ -368,8 +377,8 @@ Race race(const std::string& key, const opp::Scenario& s0, int seeds, const std:
 // Index into Race::planners of the best OMPL planner at wall w: the lowest median cost (ties: the
 // lower p95, then the first listed).
 size_t best_ompl(const Race& rc, size_t w) {
-  size_t b = 2;
-  for (size_t p = 3; p < rc.planners.size(); ++p) {
+  size_t b = kOurs;
+  for (size_t p = kOurs + 1; p < rc.planners.size(); ++p) {
     const Cell &c = rc.cell[p][w], &d = rc.cell[b][w];
     if (c.med < d.med || (c.med == d.med && c.p95 < d.p95)) b = p;
   }
@@ -378,9 +387,10 @@ size_t best_ompl(const Race& rc, size_t w) {
 
 void print_races(const std::vector<Race>& races, int seeds) {
   std::printf("\n== the race: equal wall time, %d seeds per cell, path length, the same validity checker ==\n", seeds);
-  std::printf("ours = our RRT* with connect_goal off (a goal edge only from a goal sample, as OMPL's RRTstar: like "
-              "for like);\nours+goal edges = connect_goal on (our default: an edge to the goal tried from every new "
-              "node within one step).\nRRTstar/InformedRRTstar: our range, goal bias, rewire factor, k-nearest, "
+  std::printf("ours = our RRT* with informed sampling (plan.informed) and connect_goal off (a goal edge only from a "
+              "goal sample, as OMPL's: like for like with InformedRRTstar);\nours uninformed = the same sampling the "
+              "whole box (as OMPL's RRTstar); ours+goal edges = informed, connect_goal on (an edge to the goal\ntried "
+              "from every new node within one step).\nRRTstar/InformedRRTstar: our range, goal bias, rewire factor, k-nearest, "
               "delayCC; BITstar: our rewire factor, k-nearest, defaults otherwise\n(it holds the goal as a vertex: "
               "its own goal treatment). A run without a solution counts as +inf cost.\n");
   std::printf("%-18s %-22s %7s %11s %11s %9s %8s %12s %10s %10s\n", "problem", "planner", "wall ms", "med cost",
@@ -658,7 +668,7 @@ int main(int argc, char** argv) {
     j["best_ompl_planner"] = rc.planners[b].substr(5);
     j["cost_ratio_vs_best_ompl_equal_time"] = mpgc::json::number(r);
     j["cost_p95_ratio_vs_best_ompl_equal_time"] = mpgc::json::number(rc.cell[0][w].p95 / rc.cell[b][w].p95);
-    for (size_t p = 2; p < rc.planners.size(); ++p) {
+    for (size_t p = kOurs; p < rc.planners.size(); ++p) {
       const std::string n = rc.planners[p].substr(5);
       j["cost_ratio_vs_" + n + "_equal_time"] = mpgc::json::number(rc.cell[0][w].med / rc.cell[p][w].med);
       j["iter_per_s_ratio_vs_" + n + "_equal_time"] = mpgc::json::number(rc.cell[0][w].it_per_s / rc.cell[p][w].it_per_s);
@@ -668,7 +678,8 @@ int main(int argc, char** argv) {
     j["cost_median_ours"] = mpgc::json::number(rc.cell[0][w].med);
     j["first_solution_ms_ours"] = mpgc::json::number(rc.cell[0][w].first_ms);
     j["success_ours"] = mpgc::json::number(rc.cell[0][w].success);
-    j["cost_ratio_goal_edges_on_vs_off_equal_time"] = mpgc::json::number(rc.cell[1][w].med / rc.cell[0][w].med);
+    j["cost_ratio_goal_edges_on_vs_off_equal_time"] = mpgc::json::number(rc.cell[2][w].med / rc.cell[0][w].med);
+    j["cost_ratio_informed_vs_uninformed_equal_time"] = mpgc::json::number(rc.cell[0][w].med / rc.cell[1][w].med);
     j["iter_per_s_ratio_vs_ompl_rrtstar_20k_iter"] = mpgc::json::number(vs[k]->iter_ratio);
     j["cost_ratio_vs_ompl_rrtstar_20k_iter"] = mpgc::json::number(vs[k]->cost_equal_iter);
     j["loses"] = !(r <= 1.0);
@@ -681,7 +692,7 @@ int main(int argc, char** argv) {
   auto vs_rrtstar = [&](size_t k) {
     const Race& rc = races[k];
     const size_t w = rc.walls.size() - 1;
-    return rc.cell[0][w].med / rc.cell[2][w].med;
+    return rc.cell[0][w].med / rc.cell[kOurs][w].med;
   };
 
   std::vector<double> paper_ms;
@@ -828,7 +839,7 @@ int main(int argc, char** argv) {
   summary["paper_plan_iterations"] = 5000;
   summary["warm_over_cold_cost_300_iter"] = mpgc::json::number(warm_n ? warm_gain / warm_n : NAN);
   summary["seeds"] = seeds;
-  summary["goal_treatment"] = "ours connect_goal off (goal samples only, as OMPL RRTstar)";
+  summary["goal_treatment"] = "ours connect_goal off (goal samples only, as OMPL RRTstar), informed sampling on (plan.informed)";
   summary["equal_time_s"] = walls.back();
   summary["cost_ratio_vs_best_ompl_equal_time"] = mpgc::json::number(worst);
   summary["best_ompl_planner"] = worst_best;

@@ -94,6 +94,7 @@ class Tree {
   }
 
   ColregLevel colreg = ColregLevel::kFull;  // COLREG enforced on new edges
+  double incumbent = kInf;  // the best cost of every tree so far (informed sampling)
 
   // Inserts a previous path as a chain from the root (warm start). Returns true if it reaches the goal.
   bool seed_chain(const std::vector<Vec2>& pts) {
@@ -140,7 +141,7 @@ class Tree {
         q.x = std::clamp(q.x, pb_.bounds.min_x, pb_.bounds.max_x);
         q.y = std::clamp(q.y, pb_.bounds.min_y, pb_.bounds.max_y);
       }
-    } else {
+    } else if (!informed_sample(q)) {
       q.x = pb_.bounds.min_x + rng_.u01() * (pb_.bounds.max_x - pb_.bounds.min_x);
       q.y = pb_.bounds.min_y + rng_.u01() * (pb_.bounds.max_y - pb_.bounds.min_y);
     }
@@ -254,6 +255,29 @@ class Tree {
     double cost, moving, len;  // cost: the bound without steering until costed
     int idx;
   };
+
+  // Informed sampling (RrtStarParams::informed): a point uniform in the ellipse where a path
+  // cheaper than the incumbent can pass (length < incumbent / gamma_l) and inside the sampling
+  // box. False (sample the box) without an incumbent, where the ellipse is no smaller than the
+  // box, or when 16 tries all fell outside the box.
+  bool informed_sample(Vec2& q) {
+    if (!pr_.informed || !(incumbent < kInf) || !(pr_.gamma_l > 0.0)) return false;
+    const Vec2 s = pb_.start, g = pb_.goal.p;
+    const double a = 0.5 * incumbent / pr_.gamma_l, f = 0.5 * norm(g - s);
+    if (!(a > f)) return false;
+    const double b = std::sqrt(a * a - f * f);
+    const double box = (pb_.bounds.max_x - pb_.bounds.min_x) * (pb_.bounds.max_y - pb_.bounds.min_y);
+    if (!(kPi * a * b < box)) return false;
+    const Vec2 c = 0.5 * (s + g);
+    const Vec2 e = f > 0.0 ? (0.5 / f) * (g - s) : Vec2{1.0, 0.0};  // major axis
+    for (int k = 0; k < 16; ++k) {
+      const double r = std::sqrt(rng_.u01()), th = 2.0 * kPi * rng_.u01();
+      const double u = a * r * std::cos(th), v = b * r * std::sin(th);
+      q = c + u * e + v * Vec2{-e.y, e.x};
+      if (in_bounds(q)) return true;
+    }
+    return false;
+  }
 
   double inv_speed() const { return 1.0 / pb_.speed; }
   bool in_bounds(Vec2 p) const {
@@ -611,6 +635,7 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
       tree->colreg = colreg;
       last_improvement = res.stats.iterations;
     }
+    tree->incumbent = best_cost;
     tree->iterate();
     if (tree->best_cost() < best_cost) {
       best_cost = tree->best_cost();
@@ -681,6 +706,8 @@ void RrtStar::declare(rt::ParamSet& ps) {
   ps.add("plan.k_nearest", &p_.k_nearest, true, "k-nearest neighbourhood (false: the shrinking radius of RRT*)");
   ps.add("plan.connect_goal", &p_.connect_goal, true,
          "try a goal edge from every new node within one step (false: only goal samples connect, as OMPL's RRTstar)");
+  ps.add("plan.informed", &p_.informed, false,
+         "once a path exists, sample only the ellipse where a cheaper one can pass (informed RRT*)");
   ps.add("plan.restart_after", &p_.restart_after, 1000, "-", 0, 10000000,
          "iterations without improvement before a fresh tree is grown (0 = never)");
   ps.add("plan.compliant_share", &p_.compliant_share, 0.5, "-", 0.01, 1.0,

@@ -24,6 +24,10 @@ struct RrtStarParams {
                                        // (false: only goal samples connect, as OMPL's RRTstar)
   int restart_after = 0;               // [-] iterations without improvement after which a fresh tree
                                        //     is grown (best kept); 0 = one tree (plain RRT*)
+  bool informed = false;               // once a path of cost c exists, sample only where a
+                                       // cheaper one can pass: the ellipse with foci start and
+                                       // goal and length c / gamma_l (Gammell 2014; every other
+                                       // cost term is >= 0, so the set is exact, never too small)
   double compliant_share = 0.5;        // [-] budget share after which a compliant pass still
                                        //     without any solution gives way to the relaxed pass
                                        //     (first to the pinned obligations alone, when a
@@ -57,7 +61,7 @@ class RrtStar final : public Planner {
  public:
   std::string name() const override { return "rrtstar"; }
   // plan.step, plan.goal_bias, plan.rewire_factor, plan.k_nearest, plan.connect_goal,
-  // plan.restart_after, plan.compliant_share.
+  // plan.informed, plan.restart_after, plan.compliant_share.
   void declare(rt::ParamSet& ps) override;
   Result solve(const Request& rq, const Hooks& hooks = {}) override;
   RrtStarParams& params() { return p_; }
