@@ -366,7 +366,8 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
     return invalid("dijkstra-sv: the tables need at least two rudder settings and a positive approach speed");
 
   // The paper's safe CPA (plan.dsv.safe_cpa) as the checker's d_safety when it is larger than the
-  // problem's; with no path there, the problem's own d_safety (§3 Step 5: "reduce the safe CPA").
+  // problem's; with no path there, the problem's own d_safety (§3 Step 5: "reduce the safe CPA"),
+  // at each COLREG level before the next relaxation: the rules come before the extra margin.
   std::vector<ConstraintParams> tries{rq.constraints};
   if (p_.safe_cpa > rq.constraints.safety_distance) {
     ConstraintParams c = rq.constraints;
@@ -374,16 +375,24 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
     c.colreg_distance = std::max(c.colreg_distance, 1.5 * p_.safe_cpa);  // d_COLREG > d_safety
     if (check_problem(pb, c).empty()) tries.insert(tries.begin(), c);
   }
+  const ColregLevel full = pb.colreg ? ColregLevel::kFull : ColregLevel::kNone;
+  std::vector<ColregLevel> levels{full};
+  if (pb.colreg) levels = {ColregLevel::kFull, ColregLevel::kPinned17c, ColregLevel::kPinned, ColregLevel::kNone};
   std::string notes;
   uint64_t checks = 0;
   int expanded = 0;
-  for (const ConstraintParams& c : tries) {
-    std::optional<Result> r = plan(pb, c, rq, hooks, tt, notes, checks, expanded);
-    if (!r) continue;
-    if (c.safety_distance < tries.front().safety_distance)
-      r->reason = "safe CPA " + fmt(tries.front().safety_distance) + " m reduced to d_safety " + fmt(c.safety_distance) +
-                  " m: " + r->reason;
-    return done(*r);
+  for (const ColregLevel lv : levels) {
+    int colreg_rejects = 0;
+    for (const ConstraintParams& c : tries) {
+      std::optional<Result> r = plan(pb, c, lv, lv == full, rq, hooks, tt, notes, checks, expanded, colreg_rejects);
+      if (!r) continue;
+      if (c.safety_distance < tries.front().safety_distance)
+        r->reason = "safe CPA " + fmt(tries.front().safety_distance) + " m reduced to d_safety " + fmt(c.safety_distance) +
+                    " m: " + r->reason;
+      if (lv != full) r->reason = std::string("relaxed to ") + level_name(lv) + ": " + r->reason + "; " + notes;
+      return done(*r);
+    }
+    if (colreg_rejects == 0) break;  // COLREG refused nothing: relaxing it cannot help
   }
   Result r;
   r.status = Status::kNoPath;
@@ -393,9 +402,9 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
   return done(r);
 }
 
-std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams& c, const Request& rq, const Hooks& hooks,
-                                       const TurningTables& tt, std::string& notes, uint64_t& checks,
-                                       int& expanded) const {
+std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest,
+                                       const Request& rq, const Hooks& hooks, const TurningTables& tt, std::string& notes,
+                                       uint64_t& checks, int& expanded, int& colreg_rejects) const {
   const ValidityChecker check(pb, c);
   const Objective objective(pb, rq.objective);
   const Search search{pb, c, p_, tt, check, objective, rq.budget, hooks};
@@ -403,8 +412,8 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
   const std::string at = "at safe CPA " + fmt(c.safety_distance) + " m, ";  // every reason says which
 
   // Step 1: no danger on the pre-set route (the straight leg to the goal is available): keep it.
-  const ColregLevel full = pb.colreg ? ColregLevel::kFull : ColregLevel::kNone;
-  if (search.leg_ok(unit_of(pb.heading), pb.start, pb.goal.p, 0.0, true, full, checks) == ValidityChecker::kValid &&
+  if (strictest &&
+      search.leg_ok(unit_of(pb.heading), pb.start, pb.goal.p, 0.0, true, lv, checks) == ValidityChecker::kValid &&
       check.goal_heading_ok(route)) {
     Result r = finish(pb, {pb.start, pb.goal.p}, false, check, objective);
     r.reason = "route clear at safe CPA " + fmt(c.safety_distance) + " m: no manoeuvre (§3 Step 1)";
@@ -413,42 +422,33 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
     return r;
   }
 
-  // Steps 2-6 on both grids, at the strictest COLREG level that has a path (§6 of seed 000).
-  std::vector<ColregLevel> levels{full};
-  if (pb.colreg) levels = {ColregLevel::kFull, ColregLevel::kPinned17c, ColregLevel::kPinned, ColregLevel::kNone};
-  std::string relax_notes;
-  for (const ColregLevel lv : levels) {
-    const SideResult stb = search.run(+1, lv), port = search.run(-1, lv);
-    expanded += stb.expanded + port.expanded;
-    checks += stb.checks + port.checks;
-    if (!stb.ok && !port.ok) {
-      const std::string n = at + level_name(lv) + ": starboard: " + stb.why + "; port: " + port.why;
-      notes += (notes.empty() ? "" : "; ") + n;
-      relax_notes += (relax_notes.empty() ? "" : "; ") + n;
-      if (stb.colreg_rejects + port.colreg_rejects == 0) break;  // COLREG refused nothing: relaxing it cannot help
-      continue;
-    }
-    // Starboard first; the port alternative only when it costs less (§3, after eq. 5).
-    const bool take_port = !stb.ok || (port.ok && port.cost < stb.cost);
-    const SideResult& s = take_port ? port : stb;
-    // Every leg was checked by the same checker at the same times: a failure here is a bug.
-    if (const std::string v = check.check_path(s.pts, false); !v.empty()) {
-      Result bad;
-      bad.status = Status::kNoPath;
-      bad.reason = "dijkstra-sv path failed the checker: " + v;
-      return bad;
-    }
-    Result r = finish(pb, s.pts, lv != full, check, objective);
-    r.stats.iterations = r.stats.iterations_compliant = expanded;
-    r.stats.nodes = static_cast<int>(s.pts.size());
-    r.stats.first_solution_iteration = expanded;
-    r.stats.edge_checks = checks;
-    r.reason = std::string(take_port ? "port" : "starboard") + " grid " + at + "cost " + fmt(s.cost) + " (other side: " +
-               (take_port ? (stb.ok ? "cost " + fmt(stb.cost) : stb.why) : (port.ok ? "cost " + fmt(port.cost) : port.why)) + ")";
-    if (lv != full) r.reason = std::string("relaxed to ") + level_name(lv) + ": " + r.reason + "; " + relax_notes;
-    return r;
+  // Steps 2-6 on both grids.
+  const SideResult stb = search.run(+1, lv), port = search.run(-1, lv);
+  expanded += stb.expanded + port.expanded;
+  checks += stb.checks + port.checks;
+  colreg_rejects += stb.colreg_rejects + port.colreg_rejects;
+  if (!stb.ok && !port.ok) {
+    notes += (notes.empty() ? "" : "; ") + at + level_name(lv) + ": starboard: " + stb.why + "; port: " + port.why;
+    return std::nullopt;
   }
-  return std::nullopt;
+  // Starboard first; the port alternative only when it costs less (§3, after eq. 5).
+  const bool take_port = !stb.ok || (port.ok && port.cost < stb.cost);
+  const SideResult& s = take_port ? port : stb;
+  // Every leg was checked by the same checker at the same times: a failure here is a bug.
+  if (const std::string v = check.check_path(s.pts, false); !v.empty()) {
+    Result bad;
+    bad.status = Status::kNoPath;
+    bad.reason = "dijkstra-sv path failed the checker: " + v;
+    return bad;
+  }
+  Result r = finish(pb, s.pts, !strictest, check, objective);
+  r.stats.iterations = r.stats.iterations_compliant = expanded;
+  r.stats.nodes = static_cast<int>(s.pts.size());
+  r.stats.first_solution_iteration = expanded;
+  r.stats.edge_checks = checks;
+  r.reason = std::string(take_port ? "port" : "starboard") + " grid " + at + "cost " + fmt(s.cost) + " (other side: " +
+             (take_port ? (stb.ok ? "cost " + fmt(stb.cost) : stb.why) : (port.ok ? "cost " + fmt(port.cost) : port.why)) + ")";
+  return r;
 }
 
 }  // namespace mpgc::opp

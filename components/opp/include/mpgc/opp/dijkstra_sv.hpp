@@ -53,9 +53,11 @@ class DijkstraSv final : public Planner {
   // The tables of params().tables, loaded once per file name (under mu_: concurrent solves share
   // them read-only); "" or the loader's message.
   std::string ensure_tables(std::shared_ptr<const TurningTables>& out);
-  // Steps 1-6 at the constraints c; nullopt with `notes` extended when the grid has no path.
-  std::optional<Result> plan(const Problem& pb, const ConstraintParams& c, const Request& rq, const Hooks& hooks,
-                             const TurningTables& tt, std::string& notes, uint64_t& checks, int& expanded) const;
+  // Steps 1-6 at the constraints c and COLREG level lv (Step 1 only at the strictest); nullopt
+  // with `notes` extended when the grid has no path.
+  std::optional<Result> plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest,
+                             const Request& rq, const Hooks& hooks, const TurningTables& tt, std::string& notes,
+                             uint64_t& checks, int& expanded, int& colreg_rejects) const;
   std::mutex mu_;
   DsvParams p_;
   std::shared_ptr<const TurningTables> tables_;
