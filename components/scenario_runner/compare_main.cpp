@@ -36,11 +36,11 @@ std::vector<std::string> split(const std::string& s) {
 int main(int argc, char** argv) {
   CLI::App app{"mpgc_compare: the planners side by side on the same scenarios"};
   std::vector<std::string> files;
-  std::string suites, planners_arg = "rrtstar,apf-vo", out = "out/compare";
+  std::string suites, planners_arg = "rrtstar,apf-vo,dijkstra-sv", out = "out/compare";
   bool no_run = false;
   app.add_option("scenarios", files, "scenario files (scenarios/*.yaml, or DNV traffic-generator situations *.json)");
   app.add_option("--suite", suites, "suites, comma-separated (paper, chart, faults, rules, dnv, all)");
-  app.add_option("--planners", planners_arg, "planners, comma-separated (default rrtstar,apf-vo)");
+  app.add_option("--planners", planners_arg, "planners, comma-separated (default rrtstar,apf-vo,dijkstra-sv)");
   app.add_option("--out", out, "output folder: DIR/<planner>/<scenario>/ (default out/compare)");
   app.add_flag("--no-run", no_run, "sail nothing: the table of the metrics.json already in DIR/<planner>/");
   CLI11_PARSE(app, argc, argv);

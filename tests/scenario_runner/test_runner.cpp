@@ -59,6 +59,22 @@ TEST(Runner, LockstepLaunchFileHasTheParticipantsAndTheScenariosParameters) {
   EXPECT_FALSE(c["opp"]["set"]["faults.accept"]);
 }
 
+TEST(Runner, DijkstraSvGetsTablesOfTheWorldsOwnShipAtTheCruiseSpeed) {
+  sr::Scenario s = scenario();
+  s.world = YAML::Load("own_ship: {model: nomoto, length_m: 122, beam_m: 18, speed_kn: 12}\n");
+  EXPECT_TRUE(sr::turning_tables_command(s, "", "/b", "/r/t.csv").empty());         // rrtstar
+  EXPECT_TRUE(sr::turning_tables_command(s, "apf-vo", "/b", "/r/t.csv").empty());
+  const std::vector<std::string> want{"/b/mpgc_trial", "--model", "nomoto", "--length-m", "122", "--beam-m", "18",
+                                      "--speed-kn", "12", "table", "--out", "/r/t.csv"};
+  EXPECT_EQ(sr::turning_tables_command(s, "dijkstra-sv", "/b", "/r/t.csv"), want);
+  s.params["opp"]["plan.planner"] = "dijkstra-sv";  // the scenario's own choice
+  EXPECT_EQ(sr::turning_tables_command(s, "", "/b", "/r/t.csv"), want);
+  s.cruise_speed = 10 * 1852.0 / 3600.0;  // goal.speed_kn: the plans' speed
+  EXPECT_EQ(sr::turning_tables_command(s, "", "/b", "/r/t.csv")[8], "10");
+  s.params["opp"]["plan.dsv.tables"] = "mine.csv";  // given: none made
+  EXPECT_TRUE(sr::turning_tables_command(s, "", "/b", "/r/t.csv").empty());
+}
+
 TEST(Runner, HilLaunchFileAddsGpsdAndTheBridgeOnTheDomainsPorts) {
   sr::RunOptions o;
   o.hil = true;

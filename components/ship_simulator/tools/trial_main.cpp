@@ -46,6 +46,13 @@ int main(int argc, char** argv) {
   double speed_kn = 0.0, dt = 0.1;
   app.add_option("--model", choice.kind, "ship model: mmg | nomoto")->check(CLI::IsMember({"mmg", "nomoto"}));
   app.add_option("--data-dir", choice.data_dir, "folder with kvlcc2_mmg_parameters.csv and nomoto_kt.csv");
+  // The own ship of a world file (own_ship: model, nomoto_ship, length_m, beam_m), so mpgc_run can
+  // make a scenario's own tables for dijkstra-sv.
+  app.add_option("--nomoto-ship", choice.nomoto_ship, "nomoto only: the row of nomoto_kt.csv to scale from");
+  app.add_option("--length-m", choice.length, "nomoto only: hull length [m] (default: the KVLCC2's)")
+      ->check(CLI::Range(10.0, 500.0));
+  app.add_option("--beam-m", choice.beam, "nomoto only: beam [m] (default: scaled with the length)")
+      ->check(CLI::Range(1.0, 100.0));
   app.add_option("--speed-kn", speed_kn, "approach speed [kn] (default: the model's service speed, 15.5 kn)");
   app.add_option("--dt", dt, "integration step [s]")->check(CLI::Range(0.001, 5.0));
   app.require_subcommand(1);

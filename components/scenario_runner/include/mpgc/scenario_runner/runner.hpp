@@ -96,6 +96,13 @@ std::vector<std::string> scenario_files(std::vector<std::string> files, const st
 // The simulator's world file of a run (the own ship gets an MMSI under HIL when it has none).
 std::string world_file(const Scenario& s, bool hil);
 
+// dijkstra-sv plans on turning-circle tables of the own ship (seed 002 §2). When the run's planner
+// (--planner, else the scenario's plan.planner) is dijkstra-sv and the scenario names no
+// plan.dsv.tables: the command that makes them for the world's own ship at the cruise speed
+// (`<bin_dir>/mpgc_trial ... table --out out_csv`, half a second). Empty when none is needed.
+std::vector<std::string> turning_tables_command(const Scenario& s, const std::string& planner,
+                                                const std::string& bin_dir, const std::string& out_csv);
+
 // Where a component runs when the run is spread over a deployment's hosts.
 struct Placement {
   bool on_hosts = false;
