@@ -254,6 +254,24 @@ TEST(Evaluation, PassCriteriaToleranceAndViolationTime) {
   EXPECT_THROW(sr::evaluate(r, {}, c), std::invalid_argument);  // no target 42
 }
 
+TEST(Evaluation, MinShipDistanceIsAPlannersClaimWithoutTolerance) {
+  const auto r = pass_by(1.0);  // target 7 passed at 500 m
+  sr::PassCriteria c;
+  c.goal_required = false;
+  c.safety_tolerance = 0.5;
+  c.max_safety_violation_s = 1e6;
+  c.min_ship_distance = 500.0;
+  auto m = sr::evaluate(r, {}, c);
+  EXPECT_TRUE(m.passed) << (m.failures.empty() ? "" : m.failures[0]);
+  c.min_ship_distance = 501.0;
+  m = sr::evaluate(r, {}, c);
+  ASSERT_EQ(m.failures.size(), 1u);
+  EXPECT_NE(m.failures[0].find("target 7: least distance 500.0 m < the required 501.0 m"), std::string::npos)
+      << m.failures[0];
+  c.min_ship_distance = std::nan("");
+  EXPECT_THROW(sr::evaluate(r, {}, c), std::invalid_argument);
+}
+
 TEST(Evaluation, RequiredEncounterVerdicts) {
   // Head-on turning to port (see test_colreg_verdicts): required compliant -> fails with reasons.
   const auto t = sr::synthetic::times(400, 1.0);

@@ -22,7 +22,7 @@ safety_distance_lpp: 10
 time_limit_s: 100
 obstacles: {shapes_lpp: "circle 50 50 5; polygon 0 0 1 0 1 1"}
 params: {opp: {replan.period: 15}}
-criteria: {safety_tolerance: 0.05, targets: [{id: 1, situation: head-on}]}
+criteria: {safety_tolerance: 0.05, min_ship_distance_m: 1296.4, targets: [{id: 1, situation: head-on}]}
 )";
 
 std::string error_of(const std::string& yaml) {
@@ -48,6 +48,7 @@ TEST(ScenarioFile, LppKeysBecomeMetres) {
   ASSERT_EQ(s.criteria.required.size(), 1u);
   EXPECT_EQ(s.criteria.required[0].situation, mpgc::colreg::EncounterType::kHeadOn);
   EXPECT_DOUBLE_EQ(s.criteria.safety_tolerance, 0.05);
+  EXPECT_DOUBLE_EQ(s.criteria.min_ship_distance, 1296.4);
 }
 
 TEST(ScenarioFile, ErrorsNameLineAndKey) {

@@ -250,6 +250,8 @@ void PassCriteria::validate() const {
     throw std::invalid_argument("PassCriteria.safety_tolerance must be in [0, 1)");
   if (!(std::isfinite(max_safety_violation_s) && max_safety_violation_s >= 0.0))
     throw std::invalid_argument("PassCriteria.max_safety_violation_s must be finite and >= 0");
+  if (!(std::isfinite(min_ship_distance) && min_ship_distance >= 0.0))
+    throw std::invalid_argument("PassCriteria.min_ship_distance must be finite and >= 0");
 }
 
 // --- geometry API -----------------------------------------------------------------------------------
@@ -768,6 +770,11 @@ Metrics evaluate(const RunRecord& run, const EvaluationParams& p, const PassCrit
     if (td.likely_collision && td.min_distance < limit)
       m.failures.push_back("target " + std::to_string(td.target_id) + ": likely collision (least distance " +
                            fmt(td.min_distance) + " m < r_col_cpa " + fmt(p.r_col_cpa) + " m)");
+  if (criteria.min_ship_distance > 0.0)
+    for (const TargetDistance& td : m.min_distance_targets)
+      if (td.min_distance < criteria.min_ship_distance)
+        m.failures.push_back("target " + std::to_string(td.target_id) + ": least distance " + fmt(td.min_distance) +
+                             " m < the required " + fmt(criteria.min_ship_distance) + " m");
   if (m.safety_violation_s > criteria.max_safety_violation_s)
     m.failures.push_back("below d_safety for " + fmt(m.safety_violation_s) + " s (allowed " +
                          fmt(criteria.max_safety_violation_s) + " s)");

@@ -140,12 +140,14 @@ std::string expand_shared(std::string path) {
 }
 
 PassCriteria parse_criteria(const std::string& origin, const YAML::Node& c) {
-  only_keys(origin, c, "criteria", {"goal", "safety_tolerance", "max_safety_violation_s", "colreg_compliant", "targets"});
+  only_keys(origin, c, "criteria",
+            {"goal", "safety_tolerance", "max_safety_violation_s", "colreg_compliant", "min_ship_distance_m", "targets"});
   PassCriteria out;
   out.goal_required = boolean(origin, c, "goal", true);
   out.safety_tolerance = number(origin, c, "safety_tolerance", 0, 0, 1);
   out.max_safety_violation_s = number(origin, c, "max_safety_violation_s", 0, 0, 1e6);
   out.all_encounters_compliant = boolean(origin, c, "colreg_compliant", false);
+  out.min_ship_distance = number(origin, c, "min_ship_distance_m", 0, 0, 1e6);
   if (const YAML::Node ts = c["targets"]) {
     if (!ts.IsSequence()) fail(origin, ts, "criteria.targets", "must be a list");
     for (const auto& t : ts) {

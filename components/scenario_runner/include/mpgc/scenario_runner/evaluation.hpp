@@ -214,6 +214,9 @@ struct PassCriteria {
   double safety_tolerance = 0.0;        // [-] min distance >= d_safety * (1 - tolerance)
   double max_safety_violation_s = 0.0;  // [s] time allowed below d_safety (any obstacle)
   bool all_encounters_compliant = false;  // every encounter with a situation must be compliant
+  // [m] every target ship passed at no less, no tolerance (0: none): a planner's own claim, as
+  // seed 002's safe CPA of 0.7 NM to every ship (issue 18), beside the scenario's d_safety.
+  double min_ship_distance = 0.0;
   std::vector<RequiredEncounter> required;  // per-target requirements
   void validate() const;
 };
