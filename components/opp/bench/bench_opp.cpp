@@ -550,12 +550,13 @@ void print_hashed(const std::string& name, const std::vector<double>& ms, uint64
 
 // Plans each case `seeds` times (plan seeds 1..seeds), then seed 000's scenarios 1-3, and prints the planning times and a hash of
 // every path and cost (equal hashes: the same plans bit for bit).
-void chart_section(int seeds) {
+void chart_section(int seeds, const std::string& only) {
   const std::string data = shared_data();
   std::printf("\n== the component's planner on charts (defaults + the scenario's parameters) and seed 000 scenarios 1-3 (%d plans each) ==\n", seeds);
   std::printf("%-12s %10s %10s %10s %10s %12s %18s\n", "case", "median ms", "p95 ms", "max ms", "iter", "edge checks",
               "path hash");
   for (const ChartCase& c : chart_cases(data)) {
+    if (!only.empty() && c.name != only) continue;
     mpgc::rt::ParamSet ps;
     opp::NodeParams np;
     std::vector<std::unique_ptr<opp::Planner>> planners;
@@ -586,6 +587,7 @@ void chart_section(int seeds) {
   // Open water with moving targets and COLREG: seed 000 scenarios 1-3 at the default 20 000
   // iterations (the budget of every closed-loop plan).
   for (int n = 1; n <= 3; ++n) {
+    if (!only.empty() && "paper_s" + std::to_string(n) != only) continue;
     const opp::Scenario sc = opp::paper_scenario(n);
     std::vector<double> ms;
     uint64_t hash = 1469598103934665603ULL, checks = 0, iters = 0;
@@ -619,24 +621,27 @@ std::vector<double> parse_walls(const char* arg) {
 int main(int argc, char** argv) {
   int seeds = 20;
   bool charts_only = false, race_only = false;
+  std::string only_case;
   std::vector<double> walls = {0.05, 0.25};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) seeds = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--quick")) seeds = 5;
     else if (!std::strcmp(argv[i], "--charts")) charts_only = true;
     else if (!std::strcmp(argv[i], "--race")) race_only = true;
+    else if (!std::strcmp(argv[i], "--case") && i + 1 < argc) charts_only = true, only_case = argv[++i];
     else if (!std::strcmp(argv[i], "--walls") && i + 1 < argc && !(walls = parse_walls(argv[++i])).empty()) {
     } else {
       std::fprintf(stderr,
-                   "usage: mpgc_bench_opp [--seeds N] [--quick] [--charts] [--race] [--walls MS[,MS...]]\n"
-                   "  --quick: 5 seeds; --charts: only the component's planner on the charts; --race: only the\n"
+                   "usage: mpgc_bench_opp [--seeds N] [--quick] [--charts] [--case NAME] [--race] [--walls MS[,MS...]]\n"
+                   "  --quick: 5 seeds; --charts: only the component's planner on the charts (--case: one of its rows,\n"
+                   "  e.g. s3_canal, for a profile); --race: only the\n"
                    "  equal-iteration and equal-time comparisons with OMPL; --walls: the equal wall times in ms\n"
                    "  (default 50,250; the longest is the one the JSON's equal-time ratios use)\n");
       return 2;
     }
   }
   if (charts_only) {
-    chart_section(seeds);
+    chart_section(seeds, only_case);
     return 0;
   }
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
