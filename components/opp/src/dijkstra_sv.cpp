@@ -92,6 +92,15 @@ struct Search {
     auto xtrack = [&](Vec2 q) { return std::fabs(cross(ur, q - pb.start)); };
     const double r0_lo = tt.r0s().front(), r0_hi = tt.r0s().back();
     const QuadRule rule = p.inverse_bilinear ? QuadRule::kInverseBilinear : QuadRule::kEq4;
+    // The fan of each yaw rate met, built once (without arc_state every vertex starts at r = 0);
+    // with arc_state the rates vary continuously: a few kept, the rest built per leg.
+    std::vector<TurningFan> fans;
+    auto state_at = [&](double r0, Vec2 q) {
+      for (const TurningFan& fan : fans)
+        if (fan.r0() == r0) return fan.state_at(q, rule);
+      if (fans.size() < 8) return fans.emplace_back(tt, r0).state_at(q, rule);
+      return state_at_point(tt, r0, q, rule);
+    };
 
     std::vector<Label> L(static_cast<size_t>((R + 1) * (C + 1)));
     Label& root = L[0];
@@ -141,7 +150,7 @@ struct Search {
           const double cp = std::cos(a.s.psi), sp = std::sin(a.s.psi);
           const Vec2 local{cp * d.x + sp * d.y, -sp * d.x + cp * d.y};
           const double r0 = std::clamp(a.s.r * u_tab / u, r0_lo, r0_hi);
-          const std::optional<PointState> q = state_at_point(tt, r0, local, rule);
+          const std::optional<PointState> q = state_at(r0, local);
           if (!q) {
             ++unreachable;
             continue;

@@ -81,34 +81,39 @@ std::optional<std::array<double, 2>> quad_inverse_bilinear(const std::array<Vec2
   return std::nullopt;
 }
 
-bool convex_quad_contains(const std::array<Vec2, 4>& n, Vec2 p, double tol) {
+QuadShape::QuadShape(const std::array<Vec2, 4>& nodes) : n(nodes) {
   // Turn at every vertex between non-degenerate edges: all of one sign <=> convex (4 vertices
   // cannot wind twice). A zero-length edge (coincident nodes) is skipped.
-  std::array<Vec2, 4> e{};
   for (int i = 0; i < 4; ++i) e[i] = n[(i + 1) % 4] - n[i];
-  double scale = 0.0;
-  for (const auto& v : e) scale = std::max(scale, geom::norm(v));
-  if (!(scale > 0.0)) return false;
+  for (int i = 0; i < 4; ++i) len[i] = geom::norm(e[i]);
+  for (const double l : len) scale = std::max(scale, l);
+  if (!(scale > 0.0)) return;
   const double eps = 1e-12 * scale * scale;
-  int sign = 0;
   for (int i = 0; i < 4; ++i) {
-    if (geom::norm(e[i]) <= 1e-12 * scale) continue;
+    if (len[i] <= 1e-12 * scale) continue;
     int j = (i + 1) % 4;
-    while (geom::norm(e[j]) <= 1e-12 * scale) j = (j + 1) % 4;
+    while (len[j] <= 1e-12 * scale) j = (j + 1) % 4;
     const double c = geom::cross(e[i], e[j]);
     if (std::abs(c) <= eps) continue;  // collinear edges
     const int s = c > 0 ? 1 : -1;
     if (sign == 0) sign = s;
-    if (s != sign) return false;
+    if (s != sign) {
+      sign = 0;
+      return;
+    }
   }
-  if (sign == 0) return false;  // no area
+}
+
+bool QuadShape::contains(Vec2 p, double tol) const {
+  if (sign == 0) return false;  // not convex, or no area
   for (int i = 0; i < 4; ++i) {
-    const double len = geom::norm(e[i]);
-    if (len <= 1e-12 * scale) continue;
-    if (sign * geom::cross(e[i], p - n[i]) < -tol * len) return false;
+    if (len[i] <= 1e-12 * scale) continue;
+    if (sign * geom::cross(e[i], p - n[i]) < -tol * len[i]) return false;
   }
   return true;
 }
+
+bool convex_quad_contains(const std::array<Vec2, 4>& n, Vec2 p, double tol) { return QuadShape(n).contains(p, tol); }
 
 // ---------------------------------------------------------------------------------------------
 
@@ -357,27 +362,42 @@ StateVector predict(const TurningTables& tables, const StateVector& start, doubl
 }
 
 std::optional<PointState> state_at_point(const TurningTables& tables, double r0, Vec2 p, QuadRule rule) {
-  const auto& rud = tables.rudders();
-  const std::size_t nr = rud.size();
-  const int nt = tables.n_times();
-  if (nr < 2) return std::nullopt;  // a single rudder gives a line, not a fan
+  if (tables.rudders().size() < 2) return std::nullopt;  // a single rudder gives a line, not a fan
+  return TurningFan(tables, r0).state_at(p, rule);
+}
+
+TurningFan::TurningFan(const TurningTables& tables, double r0)
+    : r0_(r0), dt_(tables.dt()), rudders_(tables.rudders()), nt_(tables.n_times()) {
+  const std::size_t nr = rudders_.size();
+  if (nr < 2) throw std::invalid_argument("TurningFan: the tables need at least two rudder settings");
   // Fig. 3 (linear in r0) first: the fan of trials at r0, one per table rudder.
-  std::vector<StateVector> fan(nr * static_cast<std::size_t>(nt));
+  fan_.resize(nr * static_cast<std::size_t>(nt_));
   for (std::size_t i = 0; i < nr; ++i)
-    for (int k = 0; k < nt; ++k) fan[i * nt + k] = tables.row(rud[i], r0, k);
-  auto at = [&](std::size_t i, int k) -> const StateVector& { return fan[i * nt + k]; };
+    for (int k = 0; k < nt_; ++k) fan_[i * nt_ + k] = tables.row(rudders_[i], r0, k);
+  quads_.reserve((nr - 1) * static_cast<std::size_t>(nt_ - 1));
+  for (int k = 0; k + 1 < nt_; ++k)
+    for (std::size_t i = 0; i + 1 < nr; ++i) {
+      auto xy = [&](std::size_t ii, int kk) { return Vec2{fan_[ii * nt_ + kk].x, fan_[ii * nt_ + kk].y}; };
+      quads_.emplace_back(std::array<Vec2, 4>{xy(i, k), xy(i + 1, k), xy(i + 1, k + 1), xy(i, k + 1)});
+    }
+}
+
+std::optional<PointState> TurningFan::state_at(Vec2 p, QuadRule rule) const {
+  const std::size_t nr = rudders_.size();
+  const int nt = nt_;
+  auto at = [&](std::size_t i, int k) -> const StateVector& { return fan_[i * nt + k]; };
   for (int k = 0; k + 1 < nt; ++k)
     for (std::size_t i = 0; i + 1 < nr; ++i) {
+      if (!quads_[static_cast<std::size_t>(k) * (nr - 1) + i].contains(p, 1e-6)) continue;
       const std::array<std::size_t, 4> ii{i, i + 1, i + 1, i};
       const std::array<int, 4> kk{k, k, k + 1, k + 1};
       PointState out;
       for (int n = 0; n < 4; ++n) {
         out.node_states[n] = at(ii[n], kk[n]);
         out.nodes[n] = {out.node_states[n].x, out.node_states[n].y};
-        out.node_t[n] = kk[n] * tables.dt();
-        out.node_rudder[n] = rud[ii[n]];
+        out.node_t[n] = kk[n] * dt_;
+        out.node_rudder[n] = rudders_[ii[n]];
       }
-      if (!convex_quad_contains(out.nodes, p, 1e-6)) continue;
       std::array<double, 4> w{};
       if (rule == QuadRule::kEq4) {
         w = quad_weights(out.nodes, p);

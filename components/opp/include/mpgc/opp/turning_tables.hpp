@@ -64,6 +64,17 @@ std::optional<std::array<double, 2>> quad_inverse_bilinear(const std::array<geom
 // inside or on it (within tol [m]).
 bool convex_quad_contains(const std::array<geom::Vec2, 4>& nodes, geom::Vec2 p, double tol = 1e-9);
 
+// convex_quad_contains with the quad's edges and winding worked out once: a fan asks each of its
+// quads for many points (the same answers, the same arithmetic).
+struct QuadShape {
+  std::array<geom::Vec2, 4> n{}, e{};  // nodes; edges n[i] -> n[i+1]
+  std::array<double, 4> len{};         // [m] edge lengths
+  double scale = 0.0;                  // [m] the longest edge
+  int sign = 0;                        // winding: +1, -1; 0 when not convex or without area
+  explicit QuadShape(const std::array<geom::Vec2, 4>& nodes);
+  bool contains(geom::Vec2 p, double tol) const;
+};
+
 // The tables of one engine setting: one trial per (rudder, r0) node, each sampled at t = k dt,
 // k = 0 .. n_times - 1.
 class TurningTables {
@@ -127,6 +138,23 @@ struct PointState {
 enum class QuadRule { kEq4, kInverseBilinear };
 std::optional<PointState> state_at_point(const TurningTables& tables, double r0, geom::Vec2 p,
                                          QuadRule rule = QuadRule::kEq4);
+
+// state_at_point's fan at one r0, built once for many points: dijkstra-sv asks it for every leg at
+// the same yaw rate (the fan's 900 table rows and its quads' shapes were three quarters of its
+// planning time when rebuilt per leg). The same answers as state_at_point, bit for bit.
+class TurningFan {
+ public:
+  TurningFan(const TurningTables& tables, double r0);
+  std::optional<PointState> state_at(geom::Vec2 p, QuadRule rule = QuadRule::kEq4) const;
+  double r0() const { return r0_; }
+
+ private:
+  double r0_, dt_;
+  std::vector<double> rudders_;
+  int nt_;
+  std::vector<StateVector> fan_;  // [rudder i][time k]
+  std::vector<QuadShape> quads_;  // [time k][rudder i]: rudders i, i+1 x times k, k+1
+};
 
 // The accuracy check of §2 (after eq. 4): random starting conditions r0 and rudder settings
 // (seeded), the model itself simulated from eq. 3 against the tables' interpolation. The paper's
