@@ -243,14 +243,15 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
   setenv("CYCLONEDDS_URI", cyclone_uri.c_str(), 1);
   const std::string launch_path = fs::absolute(dir / "launch.yaml").string();
   // dijkstra-sv's turning-circle tables of this own ship, made for the run when none are given.
+  const sr::LaunchContext ctx = launch_context();
   sr::Scenario launched = s;
   const std::string tables = fs::absolute(dir / "turning_tables.csv").string();
-  if (const auto cmd = sr::turning_tables_command(s, o.planner, launch_context().bin_dir, tables); !cmd.empty()) {
+  if (const auto cmd = sr::turning_tables_command(s, o.planner, ctx.bin_dir, tables); !cmd.empty()) {
     std::string text;
     if (rt::run_command(cmd, &text) != 0) throw std::runtime_error("dijkstra-sv's turning-circle tables: " + text);
     launched.params["opp"]["plan.dsv.tables"] = tables;
   }
-  std::ofstream(launch_path) << sr::launch_file(launched, world_path, o, domain, where, launch_context());
+  std::ofstream(launch_path) << sr::launch_file(launched, world_path, o, domain, where, ctx);
 
   rt::RuntimeParams rp;
   rp.domain = domain;

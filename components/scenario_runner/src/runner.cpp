@@ -11,6 +11,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "mpgc/geo/angles.hpp"
 #include "mpgc/json/json.hpp"
 #include "mpgc/scenario_runner/report.hpp"
 #include "mpgc/topics.hpp"
@@ -122,7 +123,7 @@ std::vector<std::string> turning_tables_command(const Scenario& s, const std::st
   copy("length_m", "--length-m");
   copy("beam_m", "--beam-m");
   // The tables' approach speed: the speed the plans are made at (plan.speed, goal.speed_kn).
-  const double kn = s.cruise_speed > 0.0 ? s.cruise_speed * 3600.0 / 1852.0
+  const double kn = s.cruise_speed > 0.0 ? s.cruise_speed / geo::kKnot
                                          : (own && own["speed_kn"] ? own["speed_kn"].as<double>() : 0.0);
   if (kn > 0.0) cmd.insert(cmd.end(), {"--speed-kn", format("%.6g", kn)});
   cmd.insert(cmd.end(), {"table", "--out", out_csv});
