@@ -41,26 +41,26 @@ struct has_header : std::false_type {};
 template <class T>
 struct has_header<T, std::void_t<decltype(std::declval<T&>().header.seq)>> : std::true_type {};
 
-// Every leaf of a message in order, a NaN equal to any NaN (a track of unknown length has one), so
-// that two messages compare field by field.
+// Every leaf of a message in order as "path=value", a NaN equal to any NaN (a track of unknown
+// length has one), so that two messages compare field by field and a difference is named.
 template <class T>
-void flatten(const T& v, std::vector<std::string>& out) {
+void flatten(const T& v, std::vector<std::string>& out, const std::string& path = "") {
   if constexpr (std::is_floating_point_v<T>) {
     const double d = v;
     uint64_t bits = 0;
     std::memcpy(&bits, &d, sizeof d);
-    out.push_back(std::isnan(d) ? "nan" : std::to_string(bits));
+    out.push_back(path + "=" + (std::isnan(d) ? "nan" : std::to_string(bits) + " (" + std::to_string(d) + ")"));
   } else if constexpr (std::is_arithmetic_v<T>) {
-    out.push_back(std::to_string(v));
+    out.push_back(path + "=" + std::to_string(v));
   } else if constexpr (std::is_enum_v<T>) {
-    out.push_back(std::to_string(static_cast<int64_t>(v)));
+    out.push_back(path + "=" + std::to_string(static_cast<int64_t>(v)));
   } else if constexpr (std::is_same_v<T, std::string>) {
-    out.push_back(v);
+    out.push_back(path + "=" + v);
   } else if constexpr (mpgc::testing::is_message<T>::value) {
-    visit_fields(v, [&](const char*, const auto& f) { flatten(f, out); });
+    visit_fields(v, [&](const char* name, const auto& f) { flatten(f, out, path + "." + name); });
   } else {
-    out.push_back("[" + std::to_string(v.size()));
-    for (const auto& e : v) flatten(e, out);
+    out.push_back(path + ".size=" + std::to_string(v.size()));
+    for (size_t i = 0; i < v.size(); ++i) flatten(v[i], out, path + "[" + std::to_string(i) + "]");
   }
 }
 
@@ -121,6 +121,7 @@ TEST(ReplayLockstep, RecordedSensorsGiveTheRecordedTracksAndPlansAgain) {
   for (auto c : launch["components"]) {
     if (!autonomy.count(c["name"].as<std::string>())) continue;
     if (c["name"].as<std::string>() == "opp") c["set"]["memory.file"] = (dir / "opp_memory.yaml").string();
+    c["set"]["log.level"] = "warn";  // the components' info lines would hide a failure's message in CI's excerpt
     comps.push_back(c);
   }
   ASSERT_EQ(comps.size(), autonomy.size());
@@ -184,6 +185,11 @@ TEST(ReplayLockstep, RecordedSensorsGiveTheRecordedTracksAndPlansAgain) {
       EXPECT_EQ(same, want.size()) << "first difference at sample " << same << " of " << want.size() << " recorded, "
                                    << got.size() << " replayed";
       if (same < std::min(want.size(), got.size())) {  // the two samples, for a look: tests/recorder/js/decode-cdr.js
+        const auto a = content(want[same]), b = content(got[same]);
+        size_t leaf = 0;
+        while (leaf < std::min(a.size(), b.size()) && a[leaf] == b[leaf]) ++leaf;
+        ADD_FAILURE() << "sample " << same << ", first different field: recorded " << (leaf < a.size() ? a[leaf] : "(none)")
+                      << ", replayed " << (leaf < b.size() ? b[leaf] : "(none)");
         std::string f = t;
         for (char& ch : f) ch = ch == '/' ? '_' : ch;
         std::ofstream(dir / (f + ".recorded.cdr")) << want[same];
