@@ -52,7 +52,7 @@ std::vector<Vec2> apf_path(const ValidityChecker& check, Vec2 from, Vec2 to, con
     const Vec2 dg = to - q;
     const double dist = norm(dg);
     const double cq = check.fixed_clearance(q);
-    if (dist <= p.step && check.fixed_clear(q, to, keep_distance(check, cq))) {
+    if (dist <= p.step && check.fixed_clear_from(q, cq, to, keep_distance(check, cq))) {
       pts.push_back(to);
       return pts;
     }
@@ -99,11 +99,11 @@ std::vector<Vec2> apf_path(const ValidityChecker& check, Vec2 from, Vec2 to, con
     // A step that would cut into d_safety turns away from the obstacle until it is clear.
     Vec2 next = q + p.step * dir;
     const double dk = keep_distance(check, cq);
-    for (int j = 1; j <= 8 && !check.fixed_clear(q, next, dk); ++j) {
+    for (int j = 1; j <= 8 && !check.fixed_clear_from(q, cq, next, dk); ++j) {
       const Vec2 d2 = dir + (0.25 * j) * rep;
       if (!(norm(d2) > 0.0)) continue;
       next = q + (p.step / norm(d2)) * d2;
-      if (j == 8 && !check.fixed_clear(q, next, dk))
+      if (j == 8 && !check.fixed_clear_from(q, cq, next, dk))
         return fail("APF step within d_safety of a fixed obstacle at (" + fmt(q.x) + ", " + fmt(q.y) + ")");
     }
     prev = (1.0 / norm(next - q)) * (next - q);
@@ -456,6 +456,9 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
       return std::fabs(geo::angle_diff(x, d.course)) < std::fabs(geo::angle_diff(y, d.course));
     });
     const Target& tg = pb.targets[d.target];
+    // The fixed clearance of p, and of each leg end e below, once: the nests below ask for it
+    // per course, per hold and per rejoin waypoint (seed 003: most of apf-vo's time).
+    const double cp = check.fixed_clearance(p), kp = keep_distance(check, cp);
     bool placed = false;
     Vec2 best_end{};
     double best_t = 0.0;
@@ -475,8 +478,8 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
         for (int ext = 0; ext <= 2.0 * vo_.tcpa_threshold / vo_.extend; ++ext, hold += vo_.extend) {
           const Vec2 e = p + (u * hold) * dir;
           ++checks;
-          if (!check.fixed_clear(p, e, keep_distance(check, check.fixed_clearance(p))) ||
-              check.moving(p, tp, e, u * hold, lv, c.escape_start && pts.size() == 1) != ValidityChecker::kValid)
+          if (check.moving(p, tp, e, u * hold, lv, c.escape_start && pts.size() == 1) != ValidityChecker::kValid ||
+              !check.fixed_clear_from(p, cp, e, kp))
             break;
           if (!have_fallback) {
             have_fallback = true;
@@ -484,13 +487,17 @@ Result ApfVo::solve(const Request& rq, const Hooks& hooks) {
             best_t = tp + hold;
           }
           // Back to the global path: the first of its remaining waypoints reachable by a valid leg.
+          bool have_ce = false;  // e's fixed clearance and keep distance, at the first leg that needs them
+          double ce = 0.0, ke = 0.0;
           for (size_t j = idx; j < g.size() && !placed; ++j) {
             const Vec2 r = g[j] - e;
             const double rl = norm(r);
             if (!(rl > 1e-6)) continue;
             ++checks;
-            if (check.turn_ok(dir, r, rl, false) && check.fixed_clear(e, g[j], keep_distance(check, check.fixed_clearance(e))) &&
-                check.moving(e, tp + hold, g[j], rl, lv) == ValidityChecker::kValid) {
+            if (!check.turn_ok(dir, r, rl, false) || check.moving(e, tp + hold, g[j], rl, lv) != ValidityChecker::kValid)
+              continue;
+            if (!have_ce) have_ce = true, ce = check.fixed_clearance(e), ke = keep_distance(check, ce);
+            if (check.fixed_clear_from(e, ce, g[j], ke)) {
               best_end = e;
               best_t = tp + hold;
               rejoin = j;

@@ -43,15 +43,16 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
   const double vn = norm(v), wn = norm(w);
   if (vn < p.min_speed) return out;
   const Vec2 d = y0 - x0;
-  const bool port_turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi) < -p.port_tolerance;
+  // Computed where needed: most legs are decided before (the range opens), and atan2 is dear.
+  auto port_turn = [&] { return std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi) < -p.port_tolerance; };
   // Rule 17(c) forbids turning toward the crossing ship while it is still on the port bow of the
   // course held (ahead of the beam, to port), even on a leg along which the range does not close
   // (DNV 12: a port turn round the ship's bow at d_safety, the range constant), if it is a risk now
   // or the leg passes it within risk_cpa: a leg back to the route that passes a ship 16 km off
   // wider than that is no action for it (paper s1_unexpected).
   const Vec2 ahead{std::cos(e.course0), std::sin(e.course0)};
-  if (e.obligation == Obligation::kCrossingStandOn && port_turn && norm(d) <= p.port_turn_range && dot(d, ahead) > 0.0 &&
-      cross(ahead, d) < 0.0 && (e.at_risk_17c || miss_distance(x0, v, y0, w) < p.risk_cpa)) {
+  if (e.obligation == Obligation::kCrossingStandOn && norm(d) <= p.port_turn_range && dot(d, ahead) > 0.0 &&
+      cross(ahead, d) < 0.0 && port_turn() && (e.at_risk_17c || miss_distance(x0, v, y0, w) < p.risk_cpa)) {
     out.compliant = false;
     return out;
   }
@@ -80,10 +81,10 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
   if (dot(d, v - w) <= 0.0) return out;  // the range opens along this leg: being cleared
   const double dt = wn < p.min_speed ? std::nan("") : arrival_difference(x0, v, y0, w, dot(v, w) / (vn * wn), p);
   switch (e.obligation) {
-    case Obligation::kHeadOn: out.compliant = cross(v, d) < 0.0 && !port_turn; break;
+    case Obligation::kHeadOn: out.compliant = cross(v, d) < 0.0 && !port_turn(); break;
     case Obligation::kCrossingGiveWay: {
       if (across_astern(e, w, x0 - y0)) return out;
-      out.compliant = !port_turn && !(dt <= 0.0);
+      out.compliant = !(dt <= 0.0) && !port_turn();
       break;
     }
     case Obligation::kOvertaking:

@@ -58,10 +58,17 @@ class ValidityChecker {
   // segment_clear. Most legs of a tree in open water need no search of the chart.
   bool fixed_clear(Vec2 a, Vec2 b, double d, double ca, double cb) const {
     if (pb_.charted && !(pb_.charted->contains_by(a, d) && pb_.charted->contains_by(b, d))) return false;
-    const double tol = 1e-3 + 1e-6 * (std::fabs(d) + std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(b.x), std::fabs(b.y)}));
+    const double tol = certificate_tol(a, b, d);
     if (std::min(ca, cb) < d - tol) return false;
     if (std::min({ca, cb, 0.5 * (ca + cb - norm(b - a))}) >= d + tol) return true;
     return fixed_->segment_clear(a, b, d);
+  }
+  // The same answer when only a's clearance is known, ca = fixed_clearance(a) (the charted
+  // region's edge included): every point of a short leg is within |ab| of a, so a leg shorter than
+  // ca - d is clear without a search (an APF step, seed 003: most of apf-vo's time was these).
+  bool fixed_clear_from(Vec2 a, double ca, Vec2 b, double d) const {
+    if (ca - norm(b - a) >= d + certificate_tol(a, b, d)) return true;
+    return fixed_clear(a, b, d);
   }
   // [m] fixed().nearest(p): the obstacles' clearance alone (without the charted region's edge).
   double fixed_nearest(Vec2 p) const { return fixed_->nearest(p); }
@@ -76,6 +83,10 @@ class ValidityChecker {
   std::string check_path(const std::vector<Vec2>& path, bool colreg) const;
 
  private:
+  // Only a margin far above the rounding of the distances decides by a certificate.
+  static double certificate_tol(Vec2 a, Vec2 b, double d) {
+    return 1e-3 + 1e-6 * (std::fabs(d) + std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(b.x), std::fabs(b.y)}));
+  }
   const Problem& pb_;
   const ConstraintParams& c_;
   NoFixedObstacles none_;
