@@ -440,9 +440,9 @@ sr::Outcome run_one(const sr::Scenario& s, const sr::RunOptions& o) {
 
   out.metrics = rec.evaluate(wall);
   {
-    std::ifstream log(dir / "components.log");
+    std::ifstream components_log(dir / "components.log");
     std::stringstream text;
-    text << log.rdbuf();
+    text << components_log.rdbuf();
     out.metrics.components = sr::component_usage(text.str());
     // The runner itself (lockstep clock, recording for the evaluation) during this scenario; its
     // peak is the process's so far (a suite runs in one process).

@@ -151,3 +151,44 @@ TEST(Classify, NonFiniteKinematicsThrow) {
   tgt.vx = std::numeric_limits<double>::infinity();
   EXPECT_THROW(cr::assess(ship(0, 0, 0, 5), tgt, cr::ColregParams{}), std::invalid_argument);
 }
+
+// best_escape: the widest single manoeuvre bounds what a start allows (issue 18).
+TEST(BestEscape, HeadOnShipIsKeptAtItsRangeByTurningAwayAtOnce) {
+  const cr::ShipKinematics own{0, 0, 5, 0}, tgt{3704, 0, -5, 0};
+  cr::EscapeParams p;
+  const cr::Escape e = cr::best_escape(own, {tgt}, p);
+  // Turned round instantly the own ship runs ahead of it at the same speed: the range never closes.
+  EXPECT_NEAR(e.min_distance, 3704.0, 1e-6);
+  EXPECT_NEAR(std::fabs(e.alteration), mpgc::geo::kPi, 1e-9);
+  EXPECT_GT(e.alteration, 0.0);  // the tie of +-180 deg goes to starboard
+  EXPECT_EQ(e.target, 0);
+  // Holding on is a collision: the escape is the manoeuvre, not the course held.
+  EXPECT_NEAR(cr::cpa(own, tgt).dcpa, 0.0, 1e-9);
+}
+
+TEST(BestEscape, ATurnThatTakesTimeAllowsLessThanAnInstantOne) {
+  const cr::ShipKinematics own{0, 0, 5, 0}, a{3000, 800, -5, 0}, b{-2000, 2500, 4, -2};
+  cr::EscapeParams p;
+  p.speed_fractions = {1.0, 0.5};
+  const double instant = cr::best_escape(own, {a, b}, p).min_distance;
+  p.turn_radius = 600.0;
+  const cr::Escape slow = cr::best_escape(own, {a, b}, p);
+  EXPECT_LE(slow.min_distance, instant);
+  EXPECT_GT(slow.min_distance, 0.0);
+  // A start already inside a distance never allows more than the range now.
+  const cr::ShipKinematics close{400, 0, -5, 0};
+  EXPECT_LE(cr::best_escape(own, {a, close}, p).min_distance, 400.0 + 1e-9);
+}
+
+TEST(BestEscape, BadInputIsNamedAndNoTargetsIsOpenWater) {
+  const cr::ShipKinematics own{0, 0, 5, 0};
+  cr::EscapeParams p;
+  EXPECT_TRUE(std::isinf(cr::best_escape(own, {}, p).min_distance));
+  p.speed_fractions = {0.0};
+  EXPECT_THROW(cr::best_escape(own, {}, p), std::invalid_argument);
+  p = {};
+  p.turn_radius = std::nan("");
+  EXPECT_THROW(cr::best_escape(own, {}, p), std::invalid_argument);
+  p = {};
+  EXPECT_THROW(cr::best_escape(own, {cr::ShipKinematics{std::nan(""), 0, 0, 0}}, p), std::invalid_argument);
+}

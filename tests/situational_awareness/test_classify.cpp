@@ -59,3 +59,20 @@ TEST(ClassifyTool, PrintsTargetsAndAgreementLine) {
   EXPECT_EQ(rc, 1);
   EXPECT_EQ(agreement(out), std::make_pair(1, 1)) << out;
 }
+
+// --escape: which starts allow a safe CPA at all (issue 18). Situation 42 starts with its
+// overtaking ship 1290 m off, inside 0.7 NM (1296.4 m): no manoeuvre keeps it; 21's three
+// head-on ships are 9.8 km and more away.
+TEST(ClassifyTool, EscapeSaysWhichStartsAllowTheSafeCpa) {
+  const std::string exe = mpgc::testing::bin_dir() + "/mpgc_classify";
+  auto [rc, out] = run(exe + " --escape 0.7 --turn-radius 134 --escape-speeds 1,0.5 " + situation_path("21") + " " +
+                       situation_path("42"));
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("\"HO, HO, HO\" escape: "), std::string::npos) << out;
+  EXPECT_NE(out.find("allows 0.70 NM"), std::string::npos) << out;
+  EXPECT_NE(out.find("(target 3): does not allow 0.70 NM"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"escape_allows\":1,\"escape_total\":2"), std::string::npos) << out;
+  std::tie(rc, out) = run(exe + " --escape 0.7 --escape-speeds 1,fast " + situation_path("21"));
+  EXPECT_EQ(rc, 2);  // refused before any file is read (the message, on stderr, names 'fast')
+  EXPECT_EQ(out.find("escape:"), std::string::npos) << out;
+}

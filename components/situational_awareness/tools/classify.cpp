@@ -1,6 +1,9 @@
 // mpgc_classify (./mpgc classify FILE...): COLREG classification, CPA and TCPA of every target of
 // DNV ship-traffic-generator situations, next to the desiredEncounterType of the matching input
 // file. Ends with one JSON line {"agree":N,"total":M} over the targets that have a desired type.
+// --escape NM: also the widest single manoeuvre of each start (colreg::best_escape: one turn on a
+// circle of --turn-radius to a course and --escape-speeds held) and whether it keeps NM to every
+// target: which starts allow seed 002's 0.7 NM at all (issue 18); the JSON adds "escape_allows".
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -12,6 +15,7 @@
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/json/json.hpp"
 #include "mpgc/dnv/situation.hpp"
+#include "mpgc/text/list.hpp"
 
 namespace cr = mpgc::colreg;
 namespace geo = mpgc::geo;
@@ -31,7 +35,33 @@ int main(int argc, char** argv) {
                                             "situations start up to 8.3 NM apart by design)");
   app.add_option("--cpa-risk", cpa_risk_nm, "[NM] no risk when the CPA is wider (default 0.7 NM, seed 002)");
   app.add_option("--tcpa-max", tcpa_max_min, "[min] no risk when the CPA is later (default: no limit)");
+  double escape_nm = std::nan("");
+  cr::EscapeParams ep;
+  app.add_option("--escape", escape_nm, "[NM] also the widest single manoeuvre from each start, and whether it keeps this "
+                                        "distance to every target (e.g. 0.7)")->check(CLI::PositiveNumber);
+  app.add_option("--turn-radius", ep.turn_radius, "[m] --escape: the turn's radius (0: instant, the bound from above)")
+      ->check(CLI::NonNegativeNumber);
+  std::string speeds = "1";
+  app.add_option("--escape-speeds", speeds, "--escape: comma-separated speed fractions tried, each in (0, 1] (default 1)");
   CLI11_PARSE(app, argc, argv);
+  const bool escape = std::isfinite(escape_nm);
+  try {
+    ep.speed_fractions.clear();
+    for (const std::string& f : mpgc::text::split_list(speeds)) {
+      size_t used = 0;
+      double v = std::nan("");
+      try {
+        v = std::stod(f, &used);
+      } catch (const std::exception&) {
+      }
+      if (used == 0 || used != f.size()) throw std::invalid_argument("--escape-speeds: '" + f + "' is not a number");
+      ep.speed_fractions.push_back(v);
+    }
+    ep.validate();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mpgc_classify: %s\n", e.what());
+    return 2;
+  }
 
   cr::ColregParams p;
   try {
@@ -49,7 +79,7 @@ int main(int argc, char** argv) {
               geo::rad2deg(p.abaft_beam), geo::rad2deg(p.head_on_sector), geo::rad2deg(p.overtake_aspect),
               geo::rad2deg(p.crossing_aspect), d_colreg_nm, cpa_risk_nm, tcpa_max_min);
 
-  int agree = 0, total = 0, failed = 0;
+  int agree = 0, total = 0, failed = 0, allows = 0, starts = 0;
   for (const std::string& f : files) {
     try {
       mpgc::dnv::Situation s = mpgc::dnv::read_situation(f);
@@ -74,11 +104,26 @@ int main(int argc, char** argv) {
                     f.c_str(), s.title.c_str(), i + 1, computed, cr::dnv_name(a.sector), geo::rad2deg(a.beta),
                     geo::rad2deg(a.alpha), a.cpa.range, a.cpa.dcpa, a.cpa.tcpa / 60.0, verdict.c_str());
       }
+      if (escape) {
+        std::vector<cr::ShipKinematics> tg;
+        for (const auto& r : res) tg.push_back(r.target);
+        const cr::Escape e = cr::best_escape(res.empty() ? cr::ShipKinematics{} : res.front().own, tg, ep);
+        const double keep = escape_nm * geo::kNauticalMile;
+        const bool ok = e.min_distance >= keep;
+        ++starts;
+        allows += ok;
+        std::printf("%s \"%s\" escape: %.0f deg to %s at %.0f %% speed keeps %.0f m (target %d): %s %.2f NM\n", f.c_str(),
+                    s.title.c_str(), std::fabs(geo::rad2deg(e.alteration)), e.alteration >= 0 ? "starboard" : "port",
+                    res.empty() || res.front().own.speed() <= 0 ? 100.0 : 100.0 * e.speed / res.front().own.speed(),
+                    e.min_distance, e.target + 1, ok ? "allows" : "does not allow", escape_nm);
+      }
     } catch (const std::exception& e) {
       ++failed;
       std::fprintf(stderr, "mpgc_classify: %s\n", e.what());
     }
   }
-  std::printf("%s\n", mpgc::json::Json{{"agree", agree}, {"total", total}}.dump().c_str());
+  mpgc::json::Json out{{"agree", agree}, {"total", total}};
+  if (escape) out["escape_allows"] = allows, out["escape_total"] = starts;
+  std::printf("%s\n", out.dump().c_str());
   return failed ? 1 : 0;
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "mpgc/geo/angles.hpp"
 
@@ -48,6 +49,27 @@ struct Cpa {
   double range;  // [m] current distance
 };
 Cpa cpa(const ShipKinematics& own, const ShipKinematics& target);
+
+// The widest single manoeuvre from now: one turn (on a circle of turn_radius at the new speed,
+// or at once when 0) to a constant course and speed, held; the targets keep their velocities.
+// What a start allows at best with one alteration: when no course and speed keeps a distance,
+// no single manoeuvre can (seed 002's 0.7 NM claim is for starts that allow it, issue 18).
+// Instant speed changes and a steady turn from the first second make it a bound from above.
+struct EscapeParams {
+  std::vector<double> speed_fractions{1.0};  // [-] of the own speed, each in (0, 1]
+  double course_step = geo::deg2rad(1.0);    // [rad] alterations 0, +-step, ... up to +-180 deg
+  double turn_radius = 0.0;                  // [m] steady turning radius; 0: the turn is instant
+  double dt = 1.0;                           // [s] sampling of the distances along the turn
+  void validate() const;                     // throws std::invalid_argument naming the field
+};
+struct Escape {
+  double alteration = 0.0;  // [rad] the course change, + to starboard (turned that way)
+  double course = 0.0;      // [rad] the course then held
+  double speed = 0.0;       // [m/s]
+  double min_distance = std::numeric_limits<double>::infinity();  // [m] least distance to any target from now on
+  int target = -1;          // index of the target at that distance; -1 without targets
+};
+Escape best_escape(const ShipKinematics& own, const std::vector<ShipKinematics>& targets, const EscapeParams& p);
 
 // True bearing of the target from the own ship, (-pi, pi].
 double bearing(const ShipKinematics& own, const ShipKinematics& target);
