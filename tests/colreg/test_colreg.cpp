@@ -175,6 +175,12 @@ TEST(BestEscape, ATurnThatTakesTimeAllowsLessThanAnInstantOne) {
   const cr::Escape slow = cr::best_escape(own, {a, b}, p);
   EXPECT_LE(slow.min_distance, instant);
   EXPECT_GT(slow.min_distance, 0.0);
+  // Starboard only: never a port alteration, and never more than with both sides.
+  cr::EscapeParams stb = p;
+  stb.starboard_only = true;
+  const cr::Escape s = cr::best_escape(own, {a, b}, stb);
+  EXPECT_GE(s.alteration, 0.0);
+  EXPECT_LE(s.min_distance, slow.min_distance);
   // A start already inside a distance never allows more than the range now.
   const cr::ShipKinematics close{400, 0, -5, 0};
   EXPECT_LE(cr::best_escape(own, {a, close}, p).min_distance, 400.0 + 1e-9);

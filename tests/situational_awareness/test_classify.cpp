@@ -72,6 +72,12 @@ TEST(ClassifyTool, EscapeSaysWhichStartsAllowTheSafeCpa) {
   EXPECT_NE(out.find("allows 0.70 NM"), std::string::npos) << out;
   EXPECT_NE(out.find("(target 3): does not allow 0.70 NM"), std::string::npos) << out;
   EXPECT_NE(out.find("\"escape_allows\":1,\"escape_total\":2"), std::string::npos) << out;
+  // 25's overtaking ship comes up on the starboard quarter: only a turn to port keeps 0.7 NM.
+  std::tie(rc, out) = run(exe + " --escape 0.7 --turn-radius 134 " + situation_path("25"));
+  EXPECT_NE(out.find("to port at 100 % speed"), std::string::npos) << out;
+  EXPECT_NE(out.find(": allows 0.70 NM"), std::string::npos) << out;
+  std::tie(rc, out) = run(exe + " --escape 0.7 --turn-radius 134 --escape-starboard " + situation_path("25"));
+  EXPECT_NE(out.find(": does not allow 0.70 NM"), std::string::npos) << out;
   std::tie(rc, out) = run(exe + " --escape 0.7 --escape-speeds 1,fast " + situation_path("21"));
   EXPECT_EQ(rc, 2);  // refused before any file is read (the message, on stderr, names 'fast')
   EXPECT_EQ(out.find("escape:"), std::string::npos) << out;

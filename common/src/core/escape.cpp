@@ -49,7 +49,7 @@ Escape best_escape(const ShipKinematics& own, const std::vector<ShipKinematics>&
     for (int k = 0; k <= 2 * n; ++k) {
       const int side = k == 0 ? 0 : (k % 2 == 1 ? 1 : -1);
       const double delta = side * ((k + 1) / 2) * p.course_step;
-      if (k > 0 && std::fabs(delta) > geo::kPi + 1e-9) continue;
+      if (p.starboard_only && side < 0) continue;
       Least least;
       // The turn: a circle of turn_radius from the present course (x = x0 + s R (sin psi - sin psi0),
       // y = y0 - s R (cos psi - cos psi0) for heading psi = psi0 + s omega t), sampled every dt.

@@ -2,8 +2,9 @@
 // DNV ship-traffic-generator situations, next to the desiredEncounterType of the matching input
 // file. Ends with one JSON line {"agree":N,"total":M} over the targets that have a desired type.
 // --escape NM: also the widest single manoeuvre of each start (colreg::best_escape: one turn on a
-// circle of --turn-radius to a course and --escape-speeds held) and whether it keeps NM to every
-// target: which starts allow seed 002's 0.7 NM at all (issue 18); the JSON adds "escape_allows".
+// circle of --turn-radius to a course and --escape-speeds held; --escape-starboard: no port
+// alteration) and whether it keeps NM to every target: which starts allow seed 002's 0.7 NM at
+// all (issue 18); the JSON adds "escape_allows".
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
                                         "distance to every target (e.g. 0.7)")->check(CLI::PositiveNumber);
   app.add_option("--turn-radius", ep.turn_radius, "[m] --escape: the turn's radius (0: instant, the bound from above)")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--escape-starboard", ep.starboard_only, "--escape: alterations to starboard only (and speed)");
   std::string speeds = "1";
   app.add_option("--escape-speeds", speeds, "--escape: comma-separated speed fractions tried, each in (0, 1] (default 1)");
   CLI11_PARSE(app, argc, argv);
@@ -112,8 +114,13 @@ int main(int argc, char** argv) {
         const bool ok = e.min_distance >= keep;
         ++starts;
         allows += ok;
-        std::printf("%s \"%s\" escape: %.0f deg to %s at %.0f %% speed keeps %.0f m (target %d): %s %.2f NM\n", f.c_str(),
-                    s.title.c_str(), std::fabs(geo::rad2deg(e.alteration)), e.alteration >= 0 ? "starboard" : "port",
+        char turn[64];
+        if (e.alteration == 0.0)
+          std::snprintf(turn, sizeof turn, "course held");
+        else
+          std::snprintf(turn, sizeof turn, "%.0f deg to %s", std::fabs(geo::rad2deg(e.alteration)), e.alteration > 0 ? "starboard" : "port");
+        std::printf("%s \"%s\" escape: %s at %.0f %% speed keeps %.0f m (target %d): %s %.2f NM\n", f.c_str(),
+                    s.title.c_str(), turn,
                     res.empty() || res.front().own.speed() <= 0 ? 100.0 : 100.0 * e.speed / res.front().own.speed(),
                     e.min_distance, e.target + 1, ok ? "allows" : "does not allow", escape_nm);
       }

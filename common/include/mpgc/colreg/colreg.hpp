@@ -60,6 +60,7 @@ struct EscapeParams {
   double course_step = geo::deg2rad(1.0);    // [rad] alterations 0, +-step, ... up to +-180 deg
   double turn_radius = 0.0;                  // [m] steady turning radius; 0: the turn is instant
   double dt = 1.0;                           // [s] sampling of the distances along the turn
+  bool starboard_only = false;               // no alteration to port (rules 14, 15 and 17(c) prefer starboard)
   void validate() const;                     // throws std::invalid_argument naming the field
 };
 struct Escape {
