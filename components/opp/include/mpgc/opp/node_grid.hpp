@@ -59,9 +59,11 @@ class NodeGrid {
     return best;
   }
 
-  // The k nearest nodes (any order) into `out` as (squared distance, index). Every point of the
-  // scanned rings is kept and the k-th distance found by selection, cheaper than a bounded heap
-  // for the k of RRT* (about 40), and the same set.
+  // The k nearest nodes (any order) into `out` as (squared distance, index): the k least pairs,
+  // ties of distance by index, so the set is unique. Every point of the scanned rings is kept and
+  // the k-th distance found by selection, cheaper than a bounded heap for the k of RRT* (about
+  // 40); once k are held, a point farther than the k-th is not even kept (it cannot be among the
+  // k least), which spares most of the outer rings' selection work.
   void k_nearest(Vec2 q, int k, std::vector<std::pair<double, int>>& out) const {
     out.clear();
     if (k <= 0) return;
@@ -70,15 +72,24 @@ class NodeGrid {
     const double m = margin(q, ci, cj);
     const int rmax = std::max(nx_, ny_);
     const size_t kk = static_cast<size_t>(k);
+    double kth = INFINITY;  // the k-th least distance so far
     for (int r = 0; r <= rmax; ++r) {
       ring(ci, cj, r, [&](const std::vector<Entry>& c) {
-        for (const Entry& e : c) out.emplace_back((e.x - q.x) * (e.x - q.x) + (e.y - q.y) * (e.y - q.y), e.idx);
+        for (const Entry& e : c) {
+          const double d = (e.x - q.x) * (e.x - q.x) + (e.y - q.y) * (e.y - q.y);
+          if (d <= kth) out.emplace_back(d, e.idx);
+        }
       });
       if (out.size() < kk) continue;
-      std::nth_element(out.begin(), out.begin() + (kk - 1), out.end());
-      out.resize(kk);  // the k nearest so far: a point beyond the k-th never enters again
+      if (out.size() > kk) {
+        std::nth_element(out.begin(), out.begin() + (kk - 1), out.end());
+        out.resize(kk);
+      } else {
+        std::swap(*std::max_element(out.begin(), out.end()), out.back());
+      }
+      kth = out.back().first;  // out.back() is the k-th least pair
       const double lb = r * cell_ + m;
-      if (out.back().first <= lb * lb) break;
+      if (kth <= lb * lb) break;
     }
     if (out.size() > kk) out.resize(kk);
   }
