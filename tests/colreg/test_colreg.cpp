@@ -181,6 +181,14 @@ TEST(BestEscape, ATurnThatTakesTimeAllowsLessThanAnInstantOne) {
   const cr::Escape s = cr::best_escape(own, {a, b}, stb);
   EXPECT_GE(s.alteration, 0.0);
   EXPECT_LE(s.min_distance, slow.min_distance);
+  // A planner's reach: no alteration beyond max_alteration, and never wider than without it.
+  cr::EscapeParams reach = p;
+  reach.max_alteration = mpgc::geo::deg2rad(30.0);
+  const cr::Escape r = cr::best_escape(own, {a, b}, reach);
+  EXPECT_LE(std::fabs(r.alteration), reach.max_alteration + 1e-9);
+  EXPECT_LE(r.min_distance, slow.min_distance);
+  reach.max_alteration = -0.1;
+  EXPECT_THROW(cr::best_escape(own, {a, b}, reach), std::invalid_argument);
   // A start already inside a distance never allows more than the range now.
   const cr::ShipKinematics close{400, 0, -5, 0};
   EXPECT_LE(cr::best_escape(own, {a, close}, p).min_distance, 400.0 + 1e-9);

@@ -19,6 +19,8 @@ void EscapeParams::validate() const {
        "must be in [0.01 deg, 180 deg]");
   need(std::isfinite(turn_radius) && turn_radius >= 0.0, "turn_radius", "must be >= 0 m");
   need(std::isfinite(dt) && dt > 0.0 && dt <= 60.0, "dt", "must be in (0, 60] s");
+  need(std::isfinite(max_alteration) && max_alteration >= 0.0 && max_alteration <= geo::kPi, "max_alteration",
+       "must be in [0, 180] deg");
 }
 
 namespace {
@@ -49,7 +51,7 @@ Escape best_escape(const ShipKinematics& own, const std::vector<ShipKinematics>&
     for (int k = 0; k <= 2 * n; ++k) {
       const int side = k == 0 ? 0 : (k % 2 == 1 ? 1 : -1);
       const double delta = side * ((k + 1) / 2) * p.course_step;
-      if (p.starboard_only && side < 0) continue;
+      if ((p.starboard_only && side < 0) || std::fabs(delta) > p.max_alteration + 1e-12) continue;
       Least least;
       // The turn: a circle of turn_radius from the present course (x = x0 + s R (sin psi - sin psi0),
       // y = y0 - s R (cos psi - cos psi0) for heading psi = psi0 + s omega t), sampled every dt.

@@ -3,7 +3,7 @@
 // file. Ends with one JSON line {"agree":N,"total":M} over the targets that have a desired type.
 // --escape NM: also the widest single manoeuvre of each start (colreg::best_escape: one turn on a
 // circle of --turn-radius to a course and --escape-speeds held; --escape-starboard: no port
-// alteration) and whether it keeps NM to every target: which starts allow seed 002's 0.7 NM at
+// alteration; --escape-max-turn: none larger) and whether it keeps NM to every target: which starts allow seed 002's 0.7 NM at
 // all (issue 18); the JSON adds "escape_allows".
 #include <cmath>
 #include <cstdio>
@@ -43,9 +43,13 @@ int main(int argc, char** argv) {
   app.add_option("--turn-radius", ep.turn_radius, "[m] --escape: the turn's radius (0: instant, the bound from above)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--escape-starboard", ep.starboard_only, "--escape: alterations to starboard only (and speed)");
+  double max_turn_deg = 180.0;
+  app.add_option("--escape-max-turn", max_turn_deg, "[deg] --escape: no larger alteration (a planner's reach)")
+      ->check(CLI::Range(0.0, 180.0));
   std::string speeds = "1";
   app.add_option("--escape-speeds", speeds, "--escape: comma-separated speed fractions tried, each in (0, 1] (default 1)");
   CLI11_PARSE(app, argc, argv);
+  ep.max_alteration = geo::deg2rad(max_turn_deg);
   const bool escape = std::isfinite(escape_nm);
   try {
     ep.speed_fractions.clear();

@@ -61,6 +61,7 @@ struct EscapeParams {
   double turn_radius = 0.0;                  // [m] steady turning radius; 0: the turn is instant
   double dt = 1.0;                           // [s] sampling of the distances along the turn
   bool starboard_only = false;               // no alteration to port (rules 14, 15 and 17(c) prefer starboard)
+  double max_alteration = geo::kPi;          // [rad] no larger course change (a planner's reach, e.g. a grid ahead)
   void validate() const;                     // throws std::invalid_argument naming the field
 };
 struct Escape {
