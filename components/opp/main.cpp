@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
       mpgc::nav::JumpGate jumps;
       std::optional<opp::StandOnHold> held;  // rule 17(a): the last plan's stand-on hold
       double held_at = 0;                     // [s] when it was planned
+      double last_fraction = 1.0;             // [-] last_path's speed, of the planned speed
     };
     auto st = std::make_shared<State>(State{{}, {}, {}, {}, {}, {}, opp::ReplanPolicy(p.replan), 0, 0, {}, {}, {}, {},
                                             mpgc::nav::JumpGate({p.jumps.max_speed, p.jumps.margin, p.max_state_age}), {}, 0});
@@ -203,7 +204,8 @@ int main(int argc, char** argv) {
       }
       if (!hold.why_not.empty()) c->log().debug("no stand-on hold: {}", hold.why_not);
       const opp::NodePlan np = opp::plan_node(*planner, p, setup, p.objective, hold,
-                                              warm ? st->last_path : std::vector<opp::Vec2>{}, hooks);
+                                              warm ? st->last_path : std::vector<opp::Vec2>{}, hooks,
+                                              st->last_fraction);
       const opp::Result& r = np.result;
       if (np.speed_fraction < 1.0) c->count("plans.reduced_speed");
       if (np.emergency) c->count("plans.emergency");
@@ -236,6 +238,7 @@ int main(int argc, char** argv) {
       if (!r.path.empty()) {
         st->last_path.clear();
         for (const auto& w : r.path) st->last_path.push_back(w.p);
+        st->last_fraction = np.speed_fraction;
         st->warm_goal = goal.goal_id;
       }
       c->count(std::string("plans.") + opp::to_string(r.status));

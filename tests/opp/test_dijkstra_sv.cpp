@@ -188,6 +188,50 @@ TEST(DijkstraSv, SafeCpaWidensThePassing) {
   EXPECT_NE(wide.reason.find("at safe CPA 1296.4 m"), std::string::npos) << wide.reason;
 }
 
+TEST(DijkstraSv, ThePlanBeingSailedIsKeptWhileItIsClear) {
+  // Rule 8(b), §3 Step 1 on the manoeuvre: re-planned 120 s on, the first plan (still clear) comes
+  // back as it is; a previous plan that is not clear (the mirror to port, starboard to starboard
+  // with a head-on ship) is not kept: the grid is searched again.
+  Case k;
+  const opp::Target tg = head_on();
+  k.pb.targets = {tg};
+  opp::DijkstraSv p;
+  p.set_tables(tables());
+  const opp::Result first = solve(k, &p);
+  ASSERT_EQ(first.status, opp::Status::kOk) << first.reason;
+  ASSERT_FALSE(first.kept);
+  ASSERT_GE(first.path.size(), 3u);
+  std::vector<opp::Vec2> warm, mirror;
+  for (const auto& w : first.path) {
+    warm.push_back(w.p);
+    mirror.push_back({w.p.x, -w.p.y});
+  }
+  const double dt = 120.0;
+  ASSERT_LT(dt, first.path[1].t);
+  Case later = k;
+  later.pb.start = first.path[0].p + (dt / first.path[1].t) * (first.path[1].p - first.path[0].p);
+  const opp::Vec2 leg = first.path[1].p - first.path[0].p;
+  later.pb.heading = std::atan2(leg.y, leg.x);
+  later.pb.targets[0].p = tg.p + dt * tg.v;
+  const opp::Result kept = p.solve(opp::Request{later.pb, later.c, opp::ObjectiveParams{}, opp::Budget{}, warm});
+  ASSERT_EQ(kept.status, opp::Status::kOk) << kept.reason;
+  EXPECT_TRUE(kept.kept) << kept.reason;
+  EXPECT_NE(kept.reason.find("kept"), std::string::npos) << kept.reason;
+  ASSERT_EQ(kept.path.size(), first.path.size());
+  for (size_t i = 1; i < kept.path.size(); ++i) {
+    EXPECT_EQ(kept.path[i].p.x, first.path[i].p.x);
+    EXPECT_EQ(kept.path[i].p.y, first.path[i].p.y);
+  }
+  int side = 0;
+  EXPECT_GE(closest(kept, later.pb.targets[0], &side), kSafe - 1.0);
+  const opp::Result fresh = p.solve(opp::Request{later.pb, later.c, opp::ObjectiveParams{}, opp::Budget{}, mirror});
+  ASSERT_EQ(fresh.status, opp::Status::kOk) << fresh.reason;
+  EXPECT_FALSE(fresh.kept) << fresh.reason;
+  EXPECT_TRUE(fresh.colreg_compliant) << fresh.reason;
+  EXPECT_GE(closest(fresh, later.pb.targets[0], &side), kSafe - 1.0);
+  EXPECT_EQ(side, -1) << "head-on ship passed starboard to starboard; " << fresh.reason;
+}
+
 TEST(DijkstraSv, PortAlternativeWhenStarboardIsBlocked) {
   // Land across the route and far out to starboard: only the port grid passes it (§3).
   Case k;

@@ -393,7 +393,7 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
   for (const ColregLevel lv : levels) {
     int colreg_rejects = 0;
     for (const ConstraintParams& c : tries) {
-      std::optional<Result> r = plan(pb, c, lv, lv == full, rq, hooks, tt, notes, checks, expanded, colreg_rejects);
+      std::optional<Result> r = plan(pb, c, lv, lv == full, &c == &tries.front(), rq, hooks, tt, notes, checks, expanded, colreg_rejects);
       if (!r) continue;
       if (c.safety_distance < tries.front().safety_distance)
         r->reason = "safe CPA " + fmt(tries.front().safety_distance) + " m reduced to d_safety " + fmt(c.safety_distance) +
@@ -411,7 +411,7 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
   return done(r);
 }
 
-std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest,
+std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest, bool keep,
                                        const Request& rq, const Hooks& hooks, const TurningTables& tt, std::string& notes,
                                        uint64_t& checks, int& expanded, int& colreg_rejects) const {
   const ValidityChecker check(pb, c);
@@ -429,6 +429,26 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
     r.stats.edge_checks = checks;
     r.stats.nodes = 2;
     return r;
+  }
+
+  // Step 1 for the manoeuvre being sailed: while the previous plan (the waypoints still ahead)
+  // keeps the paper's safe CPA, it is kept. A fresh grid search at each re-plan would take
+  // whichever side is cheaper now, and side flips make a succession of small alterations instead
+  // of the one readily apparent one that rule 8(b) asks for. Not at a reduced safe CPA (Step 5):
+  // there the grid's best now is wanted, not the margin the last plan was left with.
+  if (strictest && keep && !rq.warm.empty()) {
+    std::vector<Vec2> kept{pb.start};
+    for (const Vec2& w : warm_tail(rq.warm, pb.start))
+      if (norm(w - kept.back()) > 1.0) kept.push_back(w);
+    if (kept.size() >= 2 && norm(kept.back() - pb.goal.p) < 1.0 &&
+        check.check_path(kept, lv == ColregLevel::kFull).empty()) {
+      Result r = finish(pb, kept, false, check, objective);
+      r.reason = "previous plan clear at safe CPA " + fmt(c.safety_distance) + " m: kept (§3 Step 1, rule 8(b))";
+      r.stats.edge_checks = checks + kept.size() - 1;
+      r.stats.nodes = static_cast<int>(kept.size());
+      r.stats.warm_started = r.kept = true;
+      return r;
+    }
   }
 
   // Steps 2-6 on both grids.

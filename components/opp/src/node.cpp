@@ -351,7 +351,8 @@ double resumed_arrival(const Result& r, const std::vector<Target>& targets, doub
 }
 
 NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const ObjectiveParams& objective,
-                   const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks) {
+                   const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks,
+                   double warm_fraction) {
   auto speeds_of = [&](const Result& r, double u) {
     std::vector<double> v(r.path.size(), u);
     if (hold.time > 0.0 && v.size() > 1) v[1] = s.own.speed();  // the hold leg keeps the speed
@@ -365,6 +366,7 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
   NodePlan out;
   out.result = solve_with_hold(planner, s, objective, hold, warm, hooks);
   out.speeds = speeds_of(out.result, s.problem.speed);
+  if (out.result.kept) return out;
   const double straight = norm(s.problem.goal.p - s.problem.start);
   // Slower speeds are tried when the plan is not compliant, or compliant only by a long detour
   // (loops where a ship would slow down); among compliant plans the earliest arrival wins, the
@@ -372,6 +374,20 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
   const bool detour = out.result.status == Status::kOk && length(out.result) > p.speed_detour * straight;
   const bool want = s.problem.colreg && out.result.status != Status::kInvalidInput &&
                     (out.result.status != Status::kOk || detour);
+  // A slower plan being sailed and still valid at its speed is carried on when the planned speed
+  // would need one too (else the ship resumes it).
+  if (want && planner.keeps_plan() && !warm.empty() && warm_fraction < 1.0) {
+    Setup slow = s;
+    slow.problem.speed = warm_fraction * s.problem.speed;
+    Result kept = solve_with_hold(planner, slow, objective, hold, warm, hooks);
+    if (kept.kept) {
+      out.result = std::move(kept);
+      out.speeds = speeds_of(out.result, slow.problem.speed);
+      out.speed_fraction = warm_fraction;
+      out.result.reason = "at " + fmt(100.0 * warm_fraction) + " % speed: " + out.result.reason;
+      return out;
+    }
+  }
   double best_time = out.result.status == Status::kOk ? length(out.result) / s.problem.speed
                                                       : std::numeric_limits<double>::infinity();
   // A slower plan is sailed slowly only until the targets it meets are passed: re-planned from

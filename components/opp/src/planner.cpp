@@ -1,6 +1,7 @@
 #include "mpgc/opp/planner.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "mpgc/opp/validity.hpp"
@@ -23,6 +24,20 @@ const char* to_string(Status s) {
     case Status::kInvalidInput: return "invalid_input";
   }
   return "?";
+}
+
+std::vector<Vec2> warm_tail(const std::vector<Vec2>& warm, Vec2 start) {
+  if (warm.size() < 2) return {};
+  size_t best_leg = 0;
+  double bd = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i + 1 < warm.size(); ++i) {
+    const double d = point_segment_dist2(start, warm[i], warm[i + 1]);
+    if (d < bd) {
+      bd = d;
+      best_leg = i;
+    }
+  }
+  return std::vector<Vec2>(warm.begin() + static_cast<long>(best_leg) + 1, warm.end());
 }
 
 Result finish(const Problem& pb, const std::vector<Vec2>& pts, bool relaxed, const ValidityChecker& check,

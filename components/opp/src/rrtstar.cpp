@@ -543,21 +543,6 @@ class Tree {
   double closest_goal_ = kInf;
 };
 
-// Waypoints from the previous plan still ahead of the new start.
-std::vector<Vec2> warm_tail(const std::vector<Vec2>& warm, Vec2 start) {
-  if (warm.size() < 2) return {};
-  size_t best_leg = 0;
-  double bd = kInf;
-  for (size_t i = 0; i + 1 < warm.size(); ++i) {
-    const double d = point_segment_dist2(start, warm[i], warm[i + 1]);
-    if (d < bd) {
-      bd = d;
-      best_leg = i;
-    }
-  }
-  return std::vector<Vec2>(warm.begin() + static_cast<long>(best_leg) + 1, warm.end());
-}
-
 }  // namespace
 
 Result plan(const Problem& problem, const Params& params, const Hooks& hooks, const std::vector<Vec2>& warm) {

@@ -45,6 +45,7 @@ class DijkstraSv final : public Planner {
   std::string name() const override { return "dijkstra-sv"; }
   void declare(rt::ParamSet& ps) override;
   Result solve(const Request& rq, const Hooks& hooks = {}) override;
+  bool keeps_plan() const override { return true; }  // §3 Step 1 on the manoeuvre being sailed
   DsvParams& params() { return p_; }
   // Tables given directly (tests, a caller that generated them); they win over params().tables.
   void set_tables(TurningTables t);
@@ -53,9 +54,10 @@ class DijkstraSv final : public Planner {
   // The tables of params().tables, loaded once per file name (under mu_: concurrent solves share
   // them read-only); "" or the loader's message.
   std::string ensure_tables(std::shared_ptr<const TurningTables>& out);
-  // Steps 1-6 at the constraints c and COLREG level lv (Step 1 only at the strictest); nullopt
-  // with `notes` extended when the grid has no path.
-  std::optional<Result> plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest,
+  // Steps 1-6 at the constraints c and COLREG level lv (Step 1 only at the strictest; the previous
+  // plan kept only when `keep`, at the unreduced safe CPA); nullopt with `notes` extended when the
+  // grid has no path.
+  std::optional<Result> plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest, bool keep,
                              const Request& rq, const Hooks& hooks, const TurningTables& tt, std::string& notes,
                              uint64_t& checks, int& expanded, int& colreg_rejects) const;
   std::mutex mu_;

@@ -179,8 +179,13 @@ struct NodePlan {
   double speed_fraction = 1.0;  // [-] of the planned speed, after any stand-on hold
   bool emergency = false;
 };
+// A planner that keeps its plan (Planner::keeps_plan) and keeps `warm` at the planned speed is
+// done; when the planned speed would try slower ones, it is first asked at warm's own speed
+// (warm_fraction of the planned speed), and keeping it there is the plan, sailed at that speed
+// (rule 8(b): the manoeuvre being made is carried on, not replaced by a new one at each re-plan).
 NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const ObjectiveParams& objective,
-                   const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks);
+                   const StandOnHold& hold, const std::vector<Vec2>& warm, const Hooks& hooks,
+                   double warm_fraction = 1.0);
 
 // Rule 17(b) / 2(b), when nothing can be planned: one leg, for the time a leg of d_safety takes at
 // min_speed_fraction of the planned speed, on the course among own course + {max_turn,

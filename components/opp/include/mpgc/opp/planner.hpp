@@ -67,6 +67,7 @@ struct Result {
   bool colreg_compliant = false;  // §5 held on every edge
   bool relaxed = false;
   std::vector<Waypoint> path;     // start first, goal last
+  bool kept = false;              // the previous path (Request::warm), still valid, returned as it is
   CostTerms cost;
   Stats stats;
 };
@@ -103,11 +104,18 @@ class Planner {
   // reason. Safe to call concurrently on one planner (the speed tries of plan_node run at once):
   // a solve keeps its search state to itself and only reads the declared parameters.
   virtual Result solve(const Request& rq, const Hooks& hooks = {}) = 0;
+  // True for a planner that returns the previous path (Result::kept) while it stays valid, rather
+  // than a new search at every re-plan: plan_node then asks it at that path's own speed too.
+  virtual bool keeps_plan() const { return false; }
 };
 
 // The Result of a found path: status (relaxed or not), compliance by `check`, the cost terms by
 // `objective` and the waypoint times at the problem's speed. Shared by every planner.
 Result finish(const Problem& pb, const std::vector<Vec2>& pts, bool relaxed, const class ValidityChecker& check,
               const Objective& objective);
+
+// The waypoints of a previous path (`Request::warm`) still ahead of `start`: those after the leg
+// nearest to it.
+std::vector<Vec2> warm_tail(const std::vector<Vec2>& warm, Vec2 start);
 
 }  // namespace mpgc::opp
