@@ -79,6 +79,6 @@ TEST(ClassifyTool, EscapeSaysWhichStartsAllowTheSafeCpa) {
   std::tie(rc, out) = run(exe + " --escape 0.7 --turn-radius 134 --escape-starboard " + situation_path("25"));
   EXPECT_NE(out.find(": does not allow 0.70 NM"), std::string::npos) << out;
   std::tie(rc, out) = run(exe + " --escape 0.7 --escape-speeds 1,fast " + situation_path("21"));
-  EXPECT_EQ(rc, 2);  // refused before any file is read (the message, on stderr, names 'fast')
+  EXPECT_NE(rc, 0);  // CLI11 refuses it before any file is read (its message, on stderr, names 'fast')
   EXPECT_EQ(out.find("escape:"), std::string::npos) << out;
 }

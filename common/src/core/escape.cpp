@@ -43,7 +43,7 @@ Escape best_escape(const ShipKinematics& own, const std::vector<ShipKinematics>&
   const geom::Vec2 p0{own.x, own.y};
   const double u0 = own.speed(), psi0 = own.course();
   Escape best;
-  best.min_distance = -1.0;
+  best.min_distance = -1.0;  // the first candidate (no alteration) always replaces it
   const int n = static_cast<int>(std::floor(geo::kPi / p.course_step + 1e-9));
   for (double f : p.speed_fractions) {
     const double u = f * u0;
@@ -86,7 +86,6 @@ Escape best_escape(const ShipKinematics& own, const std::vector<ShipKinematics>&
       if (d > best.min_distance) best = {delta, course, u, d, least.target};
     }
   }
-  if (targets.empty()) best.min_distance = INFINITY;
   return best;
 }
 

@@ -16,7 +16,6 @@
 #include "mpgc/colreg/colreg.hpp"
 #include "mpgc/json/json.hpp"
 #include "mpgc/dnv/situation.hpp"
-#include "mpgc/text/list.hpp"
 
 namespace cr = mpgc::colreg;
 namespace geo = mpgc::geo;
@@ -46,23 +45,13 @@ int main(int argc, char** argv) {
   double max_turn_deg = 180.0;
   app.add_option("--escape-max-turn", max_turn_deg, "[deg] --escape: no larger alteration (a planner's reach)")
       ->check(CLI::Range(0.0, 180.0));
-  std::string speeds = "1";
-  app.add_option("--escape-speeds", speeds, "--escape: comma-separated speed fractions tried, each in (0, 1] (default 1)");
+  app.add_option("--escape-speeds", ep.speed_fractions, "--escape: comma-separated speed fractions tried, each in (0, 1] (default 1)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
   CLI11_PARSE(app, argc, argv);
   ep.max_alteration = geo::deg2rad(max_turn_deg);
   const bool escape = std::isfinite(escape_nm);
   try {
-    ep.speed_fractions.clear();
-    for (const std::string& f : mpgc::text::split_list(speeds)) {
-      size_t used = 0;
-      double v = std::nan("");
-      try {
-        v = std::stod(f, &used);
-      } catch (const std::exception&) {
-      }
-      if (used == 0 || used != f.size()) throw std::invalid_argument("--escape-speeds: '" + f + "' is not a number");
-      ep.speed_fractions.push_back(v);
-    }
     ep.validate();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mpgc_classify: %s\n", e.what());
