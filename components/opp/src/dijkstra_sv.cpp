@@ -395,7 +395,8 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
     for (const ConstraintParams& c : tries) {
       std::optional<Result> r = plan(pb, c, lv, lv == full, &c == &tries.front(), rq, hooks, tt, notes, checks, expanded, colreg_rejects);
       if (!r) continue;
-      if (c.safety_distance < tries.front().safety_distance)
+      r->margin_reduced = c.safety_distance < tries.front().safety_distance;
+      if (r->margin_reduced)
         r->reason = "safe CPA " + fmt(tries.front().safety_distance) + " m reduced to d_safety " + fmt(c.safety_distance) +
                     " m: " + r->reason;
       if (lv != full) r->reason = std::string("relaxed to ") + level_name(lv) + ": " + r->reason + "; " + notes;

@@ -369,11 +369,12 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
   if (out.result.kept) return out;
   const double straight = norm(s.problem.goal.p - s.problem.start);
   // Slower speeds are tried when the plan is not compliant, or compliant only by a long detour
-  // (loops where a ship would slow down); among compliant plans the earliest arrival wins, the
-  // lost time being the cost of going slower.
+  // (loops where a ship would slow down), or only without the planner's own margin; among
+  // compliant plans the earliest arrival wins (the lost time being the cost of going slower),
+  // a plan keeping that margin before one that gave it up.
   const bool detour = out.result.status == Status::kOk && length(out.result) > p.speed_detour * straight;
   const bool want = s.problem.colreg && out.result.status != Status::kInvalidInput &&
-                    (out.result.status != Status::kOk || detour);
+                    (out.result.status != Status::kOk || detour || out.result.margin_reduced);
   // A slower plan being sailed and still valid at its speed is carried on when the planned speed
   // would need one too (else the ship resumes it).
   if (want && planner.keeps_plan() && !warm.empty() && warm_fraction < 1.0) {
@@ -417,7 +418,11 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
     const double f = fraction(k);
     Result r = tries[static_cast<size_t>(k - 1)].get();
     const double time = r.status == Status::kOk ? arrival(r) : std::numeric_limits<double>::infinity();
-    const bool better = time < best_time || (out.result.status == Status::kNoPath && r.status == Status::kRelaxed);
+    // A plan that keeps the planner's own margin beats one that gave it up, whatever the arrival.
+    const bool wider = r.status == Status::kOk && !r.margin_reduced && out.result.margin_reduced;
+    const bool narrower = r.margin_reduced && !out.result.margin_reduced && out.result.status == Status::kOk;
+    const bool better =
+        wider || (!narrower && (time < best_time || (out.result.status == Status::kNoPath && r.status == Status::kRelaxed)));
     if (!better) continue;
     best_time = time;
     r.reason = "speed reduced to " + fmt(100.0 * f) + " % (seed 000 §2: steering alone not sufficient" +

@@ -159,9 +159,10 @@ Result solve_with_hold(Planner& planner, const Setup& s, const ObjectiveParams& 
 
 // Seed 000 §2: "the speed is reduced if the steering action alone is not sufficient". When the
 // plan at the planned speed is not COLREG-compliant (relaxed, or no path), or compliant only by a
-// detour longer than speed_detour x the straight line to the goal, the same problem is planned at
-// speed_steps lower speeds evenly down to min_speed_fraction of it, and the compliant plan that
-// arrives first is taken (the time lost by going slower is its cost). With none compliant, the
+// detour longer than speed_detour x the straight line to the goal, or only with the planner's own
+// margin given up (Result::margin_reduced), the same problem is planned at speed_steps lower speeds
+// evenly down to min_speed_fraction of it, and the compliant plan that arrives first is taken (the
+// time lost by going slower is its cost), one keeping the margin before one that gave it up. With none compliant, the
 // planned speed's plan stands, unless it had no path at all and a lower speed has one. With no path at any speed
 // and `emergency`, emergency_path.
 // Time along the plan (Waypoint::t) of the last closest approach to a target that comes within

@@ -68,6 +68,7 @@ struct Result {
   bool relaxed = false;
   std::vector<Waypoint> path;     // start first, goal last
   bool kept = false;              // the previous path (Request::warm), still valid, returned as it is
+  bool margin_reduced = false;    // the planner's own margin beyond d_safety given up (dijkstra-sv's safe CPA, §3 Step 5)
   CostTerms cost;
   Stats stats;
 };
