@@ -324,6 +324,47 @@ TEST(OppNode, SpeedIsReducedWhenSteeringAloneIsNotSufficient) {
   EXPECT_TRUE(fixed.emergency);  // no path at the one speed: the emergency leg
 }
 
+// A stand-in for dijkstra-sv's choices, to test plan_node's: its own margin (the safe CPA) is kept
+// only below 3 m/s, and it returns the previous path (warm) as it is while slower than that.
+class MarginPlanner final : public opp::Planner {
+ public:
+  std::string name() const override { return "margin"; }
+  void declare(mpgc::rt::ParamSet&) override {}
+  bool keeps_plan() const override { return true; }
+  opp::Result solve(const opp::Request& rq, const opp::Hooks&) override {
+    const opp::Problem& pb = rq.problem;
+    opp::Result r;
+    r.status = opp::Status::kOk;
+    r.margin_reduced = pb.speed >= 3.0;
+    r.kept = !rq.warm.empty() && !r.margin_reduced;
+    r.path = {{pb.start, 0.0}, {pb.goal.p, opp::norm(pb.goal.p - pb.start) / pb.speed}};
+    return r;
+  }
+};
+
+// Seed 000 §2 with dijkstra-sv's safe CPA: a plan that gives the margin up makes the node try the
+// lower speeds, and one keeping it wins over an earlier arrival without it; a kept plan is re-asked
+// at its own speed, not replaced.
+TEST(OppNode, SpeedTriesPreferThePlannersOwnMarginAndKeepThePlanAtItsSpeed) {
+  const opp::NodeParams p = declared();  // speeds 100, 75, 50, 25 %
+  const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
+  const opp::GoalSpec goal{{12000, 0}, std::nan(""), 0, 5, 500, true};
+  const opp::Setup s = opp::build_setup(p, own, goal, {}, {}, 0);
+  ASSERT_TRUE(s.problem.colreg);
+  MarginPlanner planner;
+  const opp::NodePlan first = opp::plan_node(planner, p, s, p.objective, {}, {}, {});
+  EXPECT_FALSE(first.result.margin_reduced) << first.result.reason;
+  EXPECT_DOUBLE_EQ(first.speed_fraction, 0.5);  // 75 % is still 3.75 m/s: the fastest with the margin
+  EXPECT_FALSE(first.result.kept);
+  const std::vector<opp::Vec2> warm{{0, 0}, {12000, 0}};
+  const opp::NodePlan again = opp::plan_node(planner, p, s, p.objective, {}, warm, {}, first.speed_fraction);
+  EXPECT_TRUE(again.result.kept) << again.result.reason;
+  EXPECT_DOUBLE_EQ(again.speed_fraction, 0.5);
+  EXPECT_NE(again.result.reason.find("at 50 % speed"), std::string::npos) << again.result.reason;
+  ASSERT_EQ(again.speeds.size(), 2u);
+  EXPECT_DOUBLE_EQ(again.speeds.back(), 2.5);
+}
+
 // The lower speeds are solved at once on their own threads: the plan is still a function of the
 // request and the seed alone, bit for bit, and the same as each speed solved on its own.
 TEST(OppNode, SpeedTriesSolvedAtOnceGiveTheSamePlan) {
