@@ -35,6 +35,19 @@ bool segment_hits_box(geom::Vec2 a, geom::Vec2 b, const BoxNE& box) {
   return true;
 }
 constexpr uint32_t kLeafSize = 4;
+
+// A cheap lower bound of segment_box_distance for the many boxes a query passes far from: the gap
+// between the query's own box and the node's box. `gap_beyond(q, box, d)` is true only when that
+// gap exceeds d by far more than rounding, so a node it prunes is one the exact distance would
+// prune too: the queries visit the same leaves and return the same values.
+bool gap_beyond(const BoxNE& q, const BoxNE& b, double d) {
+  const double dx = std::max({b.min_x - q.max_x, 0.0, q.min_x - b.max_x});
+  const double dy = std::max({b.min_y - q.max_y, 0.0, q.min_y - b.max_y});
+  return dx * dx + dy * dy > d * d * (1.0 + 1e-9);
+}
+BoxNE box_of(geom::Vec2 a, geom::Vec2 b) {
+  return {std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
+}
 }  // namespace
 
 double segment_box_distance(geom::Vec2 a, geom::Vec2 b, const BoxNE& box) {
@@ -110,6 +123,11 @@ double SegmentTree::min_distance(geom::Vec2 q0, geom::Vec2 q1) const {
   };
   Item stack[128];  // depth <= log2(4e9 / kLeafSize) << 64; two pushes per level
   int top = 0;
+  const BoxNE qbox = box_of(q0, q1);
+  // The exact box distance, or +inf where the cheap gap already rules the box out against best.
+  auto lower = [&](const BoxNE& box) {
+    return gap_beyond(qbox, box, best) ? std::numeric_limits<double>::infinity() : segment_box_distance(q0, q1, box);
+  };
   stack[top++] = {0, segment_box_distance(q0, q1, nodes_[0].box)};
   while (top > 0) {
     const Item it = stack[--top];
@@ -121,8 +139,8 @@ double SegmentTree::min_distance(geom::Vec2 q0, geom::Vec2 q1) const {
       if (best == 0.0) break;
       continue;
     }
-    const double l = segment_box_distance(q0, q1, nodes_[n.first].box);
-    const double r = segment_box_distance(q0, q1, nodes_[n.first + 1].box);
+    const double l = lower(nodes_[n.first].box);
+    const double r = lower(nodes_[n.first + 1].box);
     // Push the farther child first so the nearer one is searched first and tightens `best`.
     if (l <= r) {
       if (r < best) stack[top++] = {n.first + 1, r};
@@ -140,9 +158,10 @@ bool SegmentTree::any_within(geom::Vec2 q0, geom::Vec2 q1, double d) const {
   uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
+  const BoxNE qbox = box_of(q0, q1);
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (!(segment_box_distance(q0, q1, n.box) < d)) continue;
+    if (gap_beyond(qbox, n.box, d) || !(segment_box_distance(q0, q1, n.box) < d)) continue;
     if (n.count == 0) {
       stack[top++] = n.first + 1;
       stack[top++] = n.first;
