@@ -133,6 +133,18 @@ TEST(FixedObstacleMap, SegmentClearanceAndLandEqualBruteForce) {
       }
       for (double d : {0.0, 10.0, 100.0, 300.0, bf, std::nextafter(bf, 1e300)})
         ASSERT_EQ(map.segment_clear(a, b, d), bf >= d) << "seed " << seed << " query " << k << " d " << d;
+      ASSERT_EQ(map.segment_touches(a, b), bf == 0.0) << "seed " << seed << " query " << k;
+      // Legs that end on an obstacle point or a ring vertex: touching, unless rounding says otherwise
+      // (the same per-primitive function decides both).
+      if (!pts.empty() && k % 3 == 0) {
+        const mpgc::geom::Vec2 p = pts[rng() % pts.size()];
+        ASSERT_EQ(map.segment_touches(b, p), brute_segment_clearance(pts, polys, b, p) == 0.0) << "seed " << seed << " query " << k;
+      }
+      if (np > 0 && k % 3 == 1) {
+        const auto& ring = polys[rng() % polys.size()].ring;
+        const mpgc::geom::Vec2 v = ring[rng() % ring.size()];
+        ASSERT_EQ(map.segment_touches(b, v), brute_segment_clearance(pts, polys, b, v) == 0.0) << "seed " << seed << " query " << k;
+      }
     }
   }
 }
@@ -154,6 +166,12 @@ TEST(FixedObstacleMap, ExactGeometryCases) {
   EXPECT_DOUBLE_EQ(map.segment_clearance({-5, 2}, {15, 2}), 0.0);
   // A leg passing 1 m from the point obstacle.
   EXPECT_DOUBLE_EQ(map.segment_clearance({21, -5}, {21, 5}), 1.0);
+  EXPECT_FALSE(map.segment_touches({21, -5}, {21, 5}));
+  EXPECT_TRUE(map.segment_touches({-5, 2}, {15, 2}));  // across the land
+  EXPECT_TRUE(map.segment_touches({20, -5}, {20, 5}));  // through the point obstacle
+  EXPECT_TRUE(map.segment_touches({2, 2}, {2, 3}));     // inside land
+  EXPECT_TRUE(map.segment_touches({10, 12}, {10, 10})); // ends on a corner
+  EXPECT_FALSE(map.segment_touches({5, 5}, {5.5, 5.5}));  // in the hole
   EXPECT_DOUBLE_EQ(map.nearest_distance({20, 3}), 3.0);
   // Bounds cover points and rings.
   const auto b = map.bounds();
@@ -175,6 +193,8 @@ TEST(FixedObstacleMap, EmptyMapAndBadInput) {
   om::FixedObstacleMap map({{0, 0}}, {});
   EXPECT_THROW(map.nearest_distance({std::nan(""), 0}), std::invalid_argument);
   EXPECT_THROW(map.segment_clearance({0, 0}, {INFINITY, 0}), std::invalid_argument);
+  EXPECT_THROW(map.segment_touches({std::nan(""), 0}, {0, 0}), std::invalid_argument);
+  EXPECT_FALSE(empty.segment_touches({0, 0}, {1, 1}));
   try {
     om::FixedObstacleMap({}, {{42, {{0, 0}, {1, 1}}}});
     FAIL();

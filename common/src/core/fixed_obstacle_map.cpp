@@ -145,8 +145,9 @@ double FixedObstacleMap::clearance(geom::Vec2 p) const {
   check_query(p, "clearance");
   if (inside_land(p)) return 0.0;
   // The nearest point by the kd-tree, the nearest edge by the segment tree: the same exact value
-  // as segment_clearance(p, p), faster on dense point sets.
-  return std::min(nearest_distance(p), impl_->edges.min_distance(p, p));
+  // as segment_clearance(p, p), faster on dense point sets. The point's distance bounds the edge
+  // search: only boxes closer than it are visited.
+  return impl_->edges.min_distance(p, p, nearest_distance(p));
 }
 
 // Exact, by bisection on nearest-point queries: every point within d of the piece [a, b] of the
@@ -188,6 +189,12 @@ double FixedObstacleMap::segment_clearance(geom::Vec2 a, geom::Vec2 b) const {
 }  // namespace mpgc::geom
 
 namespace mpgc::geom {
+
+bool FixedObstacleMap::segment_touches(geom::Vec2 a, geom::Vec2 b) const {
+  check_query(a, "segment_touches");
+  check_query(b, "segment_touches");
+  return inside_land(a) || impl_->edges_and_points.any_touching(a, b);
+}
 
 bool FixedObstacleMap::segment_clear(geom::Vec2 a, geom::Vec2 b, double d) const {
   check_query(a, "segment_clear");

@@ -10,10 +10,10 @@ namespace mpgc::geom {
 namespace detail {
 
 namespace {
-double point_box_distance(geom::Vec2 p, const BoxNE& b) {
+double point_box_dist2(geom::Vec2 p, const BoxNE& b) {
   const double dx = std::max({b.min_x - p.x, 0.0, p.x - b.max_x});
   const double dy = std::max({b.min_y - p.y, 0.0, p.y - b.max_y});
-  return std::sqrt(dx * dx + dy * dy);
+  return dx * dx + dy * dy;
 }
 // Liang-Barsky: does [a, b] meet the closed box?
 bool segment_hits_box(geom::Vec2 a, geom::Vec2 b, const BoxNE& box) {
@@ -51,14 +51,18 @@ BoxNE box_of(geom::Vec2 a, geom::Vec2 b) {
 }  // namespace
 
 double segment_box_distance(geom::Vec2 a, geom::Vec2 b, const BoxNE& box) {
+  // A point (clearance queries): the distance to the box, which the general case below also
+  // gives, bit for bit (a corner's distance to a point is no less than the box's).
+  if (a == b) return std::sqrt(point_box_dist2(a, box));
   if (segment_hits_box(a, b, box)) return 0.0;
   // Two disjoint convex sets in the plane: the minimum is between a vertex of one and the other.
-  double d = std::min(point_box_distance(a, box), point_box_distance(b, box));
-  d = std::min(d, geom::point_segment_distance({box.min_x, box.min_y}, a, b));
-  d = std::min(d, geom::point_segment_distance({box.min_x, box.max_y}, a, b));
-  d = std::min(d, geom::point_segment_distance({box.max_x, box.min_y}, a, b));
-  d = std::min(d, geom::point_segment_distance({box.max_x, box.max_y}, a, b));
-  return d;
+  // One root of the least square (sqrt is monotone): the same value as the least distance.
+  double d2 = std::min(point_box_dist2(a, box), point_box_dist2(b, box));
+  d2 = std::min(d2, geom::point_segment_dist2({box.min_x, box.min_y}, a, b));
+  d2 = std::min(d2, geom::point_segment_dist2({box.min_x, box.max_y}, a, b));
+  d2 = std::min(d2, geom::point_segment_dist2({box.max_x, box.min_y}, a, b));
+  d2 = std::min(d2, geom::point_segment_dist2({box.max_x, box.max_y}, a, b));
+  return std::sqrt(d2);
 }
 
 SegmentTree::SegmentTree(std::vector<Segment> segs) : segs_(std::move(segs)) {
@@ -114,8 +118,8 @@ uint32_t SegmentTree::build(uint32_t first, uint32_t count, std::vector<Node>& o
   return 0;
 }
 
-double SegmentTree::min_distance(geom::Vec2 q0, geom::Vec2 q1) const {
-  double best = std::numeric_limits<double>::infinity();
+double SegmentTree::min_distance(geom::Vec2 q0, geom::Vec2 q1, double bound) const {
+  double best = bound;
   if (nodes_.empty()) return best;
   struct Item {
     uint32_t node;
@@ -169,6 +173,28 @@ bool SegmentTree::any_within(geom::Vec2 q0, geom::Vec2 q1, double d) const {
     }
     for (uint32_t i = n.first; i < n.first + n.count; ++i)
       if (geom::segment_distance(q0, q1, segs_[i].a, segs_[i].b) < d) return true;
+  }
+  return false;
+}
+
+bool SegmentTree::any_touching(geom::Vec2 q0, geom::Vec2 q1) const {
+  if (nodes_.empty()) return false;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  const BoxNE qbox = box_of(q0, q1);
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    // The cheap gap prunes only far above rounding (1 um); the exact box distance decides the rest
+    // as min_distance's bound does.
+    if (gap_beyond(qbox, n.box, 1e-6) || segment_box_distance(q0, q1, n.box) > 0.0) continue;
+    if (n.count == 0) {
+      stack[top++] = n.first + 1;
+      stack[top++] = n.first;
+      continue;
+    }
+    for (uint32_t i = n.first; i < n.first + n.count; ++i)
+      if (geom::segment_distance(q0, q1, segs_[i].a, segs_[i].b) == 0.0) return true;
   }
   return false;
 }

@@ -26,9 +26,14 @@ class SegmentTree {
   size_t size() const { return segs_.size(); }
   // min over segments of segment_distance(q0, q1, s); +inf when empty. Exact: the same
   // per-segment function as a brute-force loop, with branch and bound on exact box distances.
-  double min_distance(geom::Vec2 q0, geom::Vec2 q1) const;
+  // With `bound`: min(bound, that), searching only where a segment could come closer than bound.
+  double min_distance(geom::Vec2 q0, geom::Vec2 q1,
+                      double bound = std::numeric_limits<double>::infinity()) const;
   // True when some segment is closer than d to [q0, q1] (same per-segment function).
   bool any_within(geom::Vec2 q0, geom::Vec2 q1, double d) const;
+  // True when some segment is at distance 0 from [q0, q1] (min_distance(q0, q1) == 0, the same
+  // per-segment function), searching only the boxes the query meets.
+  bool any_touching(geom::Vec2 q0, geom::Vec2 q1) const;
   // Groups with an odd number of edges crossing the ray from p towards +y (east).
   bool odd_crossings(geom::Vec2 p) const;
   BoxNE bounds() const;

@@ -80,6 +80,9 @@ class FixedObstacleMap {
   // segment_clearance(a, b) >= d, answered faster: the search stops at the first obstacle closer
   // than d and never explores farther than d (the planner's collision check, seed 000 eq. 4).
   bool segment_clear(geom::Vec2 a, geom::Vec2 b, double d) const;
+  // segment_clearance(a, b) == 0 (the leg touches an obstacle or lies in land), answered faster:
+  // only the boxes the leg meets are searched.
+  bool segment_touches(geom::Vec2 a, geom::Vec2 b) const;
 
   // Bounding box of every point and ring vertex (all zero when empty).
   BoxNE bounds() const;

@@ -56,8 +56,10 @@ inline double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   if ((o1 == 0 && on_box(c, a, b)) || (o2 == 0 && on_box(d, a, b)) || (o3 == 0 && on_box(a, c, d)) ||
       (o4 == 0 && on_box(b, c, d)))
     return 0.0;
-  return std::min(std::min(point_segment_distance(a, c, d), point_segment_distance(b, c, d)),
-                  std::min(point_segment_distance(c, a, b), point_segment_distance(d, a, b)));
+  // One root of the least square: sqrt is correctly rounded, hence monotone, so this is bit for
+  // bit the least of the four distances.
+  return std::sqrt(std::min(std::min(point_segment_dist2(a, c, d), point_segment_dist2(b, c, d)),
+                            std::min(point_segment_dist2(c, a, b), point_segment_dist2(d, a, b))));
 }
 
 // Time at which |r0 + dv * t| is least, over all t (seed 003 eq. 14; may be negative: the closest

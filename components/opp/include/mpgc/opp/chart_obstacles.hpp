@@ -20,7 +20,7 @@ class ChartObstacles final : public FixedObstacles {
     // The search stops at the first obstacle closer than d. At d = 0 a leg that crosses or
     // touches land (clearance 0) is blocked too.
     if (d > 0.0) return map_->segment_clear(a, b, d);
-    return map_->segment_clearance(a, b) > 0.0;
+    return !map_->segment_touches(a, b);
   }
   const geom::FixedObstacleMap& map() const { return *map_; }
 
