@@ -157,46 +157,42 @@ double SegmentTree::min_distance(geom::Vec2 q0, geom::Vec2 q1, double bound) con
   return best;
 }
 
-bool SegmentTree::any_within(geom::Vec2 q0, geom::Vec2 q1, double d) const {
+// Depth-first over the boxes `skip` does not rule out; true at the first segment whose distance to
+// [q0, q1] (the same per-segment function as min_distance) `hit` accepts.
+template <class Skip, class Hit>
+bool SegmentTree::any_segment(geom::Vec2 q0, geom::Vec2 q1, Skip skip, Hit hit) const {
   if (nodes_.empty()) return false;
   uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
-  const BoxNE qbox = box_of(q0, q1);
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (gap_beyond(qbox, n.box, d) || !(segment_box_distance(q0, q1, n.box) < d)) continue;
+    if (skip(n.box)) continue;
     if (n.count == 0) {
       stack[top++] = n.first + 1;
       stack[top++] = n.first;
       continue;
     }
     for (uint32_t i = n.first; i < n.first + n.count; ++i)
-      if (geom::segment_distance(q0, q1, segs_[i].a, segs_[i].b) < d) return true;
+      if (hit(geom::segment_distance(q0, q1, segs_[i].a, segs_[i].b))) return true;
   }
   return false;
 }
 
-bool SegmentTree::any_touching(geom::Vec2 q0, geom::Vec2 q1) const {
-  if (nodes_.empty()) return false;
-  uint32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
+bool SegmentTree::any_within(geom::Vec2 q0, geom::Vec2 q1, double d) const {
   const BoxNE qbox = box_of(q0, q1);
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    // The cheap gap prunes only far above rounding (1 um); the exact box distance decides the rest
-    // as min_distance's bound does.
-    if (gap_beyond(qbox, n.box, 1e-6) || segment_box_distance(q0, q1, n.box) > 0.0) continue;
-    if (n.count == 0) {
-      stack[top++] = n.first + 1;
-      stack[top++] = n.first;
-      continue;
-    }
-    for (uint32_t i = n.first; i < n.first + n.count; ++i)
-      if (geom::segment_distance(q0, q1, segs_[i].a, segs_[i].b) == 0.0) return true;
-  }
-  return false;
+  return any_segment(
+      q0, q1, [&](const BoxNE& b) { return gap_beyond(qbox, b, d) || !(segment_box_distance(q0, q1, b) < d); },
+      [d](double dist) { return dist < d; });
+}
+
+bool SegmentTree::any_touching(geom::Vec2 q0, geom::Vec2 q1) const {
+  const BoxNE qbox = box_of(q0, q1);
+  // The cheap gap prunes only far above rounding (1 um); the exact box distance decides the rest
+  // as min_distance's bound does.
+  return any_segment(
+      q0, q1, [&](const BoxNE& b) { return gap_beyond(qbox, b, 1e-6) || segment_box_distance(q0, q1, b) > 0.0; },
+      [](double dist) { return dist == 0.0; });
 }
 
 bool SegmentTree::odd_crossings(geom::Vec2 p) const {

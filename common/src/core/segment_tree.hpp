@@ -45,6 +45,8 @@ class SegmentTree {
     uint32_t count;  // leaf: number of segments; 0 for an inner node
   };
   uint32_t build(uint32_t first, uint32_t count, std::vector<Node>& out);
+  template <class Skip, class Hit>
+  bool any_segment(geom::Vec2 q0, geom::Vec2 q1, Skip skip, Hit hit) const;
   std::vector<Segment> segs_;
   std::vector<Node> nodes_;
 };
