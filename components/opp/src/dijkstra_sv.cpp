@@ -387,34 +387,33 @@ Result DijkstraSv::solve(const Request& rq, const Hooks& hooks) {
   const ColregLevel full = pb.colreg ? ColregLevel::kFull : ColregLevel::kNone;
   std::vector<ColregLevel> levels{full};
   if (pb.colreg) levels = {ColregLevel::kFull, ColregLevel::kPinned17c, ColregLevel::kPinned, ColregLevel::kNone};
-  std::string notes;
-  uint64_t checks = 0;
-  int expanded = 0;
+  Tally tally;
   for (const ColregLevel lv : levels) {
-    int colreg_rejects = 0;
+    tally.colreg_rejects = 0;
     for (const ConstraintParams& c : tries) {
-      std::optional<Result> r = plan(pb, c, lv, lv == full, &c == &tries.front(), rq, hooks, tt, notes, checks, expanded, colreg_rejects);
+      std::optional<Result> r = plan(pb, {c, lv, lv == full, &c == &tries.front()}, rq, hooks, tt, tally);
       if (!r) continue;
       r->margin_reduced = c.safety_distance < tries.front().safety_distance;
       if (r->margin_reduced)
         r->reason = "safe CPA " + fmt(tries.front().safety_distance) + " m reduced to d_safety " + fmt(c.safety_distance) +
                     " m: " + r->reason;
-      if (lv != full) r->reason = std::string("relaxed to ") + level_name(lv) + ": " + r->reason + "; " + notes;
+      if (lv != full) r->reason = std::string("relaxed to ") + level_name(lv) + ": " + r->reason + "; " + tally.notes;
       return done(*r);
     }
-    if (colreg_rejects == 0) break;  // COLREG refused nothing: relaxing it cannot help
+    if (tally.colreg_rejects == 0) break;  // COLREG refused nothing: relaxing it cannot help
   }
   Result r;
   r.status = Status::kNoPath;
-  r.reason = "no path on the grid (widen it or reduce the safe CPA): " + notes;
-  r.stats.iterations = expanded;
-  r.stats.edge_checks = checks;
+  r.reason = "no path on the grid (widen it or reduce the safe CPA): " + tally.notes;
+  r.stats.iterations = tally.expanded;
+  r.stats.edge_checks = tally.checks;
   return done(r);
 }
 
-std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest, bool keep,
-                                       const Request& rq, const Hooks& hooks, const TurningTables& tt, std::string& notes,
-                                       uint64_t& checks, int& expanded, int& colreg_rejects) const {
+std::optional<Result> DijkstraSv::plan(const Problem& pb, const Attempt& a, const Request& rq, const Hooks& hooks,
+                                       const TurningTables& tt, Tally& tally) const {
+  const ConstraintParams& c = a.c;
+  const ColregLevel lv = a.level;
   const ValidityChecker check(pb, c);
   const Objective objective(pb, rq.objective);
   const Search search{pb, c, p_, tt, check, objective, rq.budget, hooks};
@@ -422,12 +421,12 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
   const std::string at = "at safe CPA " + fmt(c.safety_distance) + " m, ";  // every reason says which
 
   // Step 1: no danger on the pre-set route (the straight leg to the goal is available): keep it.
-  if (strictest &&
-      search.leg_ok(unit_of(pb.heading), pb.start, pb.goal.p, 0.0, true, lv, checks) == ValidityChecker::kValid &&
+  if (a.strictest &&
+      search.leg_ok(unit_of(pb.heading), pb.start, pb.goal.p, 0.0, true, lv, tally.checks) == ValidityChecker::kValid &&
       check.goal_heading_ok(route)) {
     Result r = finish(pb, {pb.start, pb.goal.p}, false, check, objective);
     r.reason = "route clear at safe CPA " + fmt(c.safety_distance) + " m: no manoeuvre (§3 Step 1)";
-    r.stats.edge_checks = checks;
+    r.stats.edge_checks = tally.checks;
     r.stats.nodes = 2;
     return r;
   }
@@ -437,7 +436,7 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
   // whichever side is cheaper now, and side flips make a succession of small alterations instead
   // of the one readily apparent one that rule 8(b) asks for. Not at a reduced safe CPA (Step 5):
   // there the grid's best now is wanted, not the margin the last plan was left with.
-  if (strictest && keep && !rq.warm.empty()) {
+  if (a.strictest && a.keep && !rq.warm.empty()) {
     std::vector<Vec2> kept{pb.start};
     for (const Vec2& w : warm_tail(rq.warm, pb.start))
       if (norm(w - kept.back()) > 1.0) kept.push_back(w);
@@ -445,7 +444,7 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
         check.check_path(kept, lv == ColregLevel::kFull).empty()) {
       Result r = finish(pb, kept, false, check, objective);
       r.reason = "previous plan clear at safe CPA " + fmt(c.safety_distance) + " m: kept (§3 Step 1, rule 8(b))";
-      r.stats.edge_checks = checks + kept.size() - 1;
+      r.stats.edge_checks = tally.checks + kept.size() - 1;
       r.stats.nodes = static_cast<int>(kept.size());
       r.stats.warm_started = r.kept = true;
       return r;
@@ -454,11 +453,11 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
 
   // Steps 2-6 on both grids.
   const SideResult stb = search.run(+1, lv), port = search.run(-1, lv);
-  expanded += stb.expanded + port.expanded;
-  checks += stb.checks + port.checks;
-  colreg_rejects += stb.colreg_rejects + port.colreg_rejects;
+  tally.expanded += stb.expanded + port.expanded;
+  tally.checks += stb.checks + port.checks;
+  tally.colreg_rejects += stb.colreg_rejects + port.colreg_rejects;
   if (!stb.ok && !port.ok) {
-    notes += (notes.empty() ? "" : "; ") + at + level_name(lv) + ": starboard: " + stb.why + "; port: " + port.why;
+    tally.notes += (tally.notes.empty() ? "" : "; ") + at + level_name(lv) + ": starboard: " + stb.why + "; port: " + port.why;
     return std::nullopt;
   }
   // Starboard first; the port alternative only when it costs less (§3, after eq. 5).
@@ -471,11 +470,11 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const ConstraintParams
     bad.reason = "dijkstra-sv path failed the checker: " + v;
     return bad;
   }
-  Result r = finish(pb, s.pts, !strictest, check, objective);
-  r.stats.iterations = r.stats.iterations_compliant = expanded;
+  Result r = finish(pb, s.pts, !a.strictest, check, objective);
+  r.stats.iterations = r.stats.iterations_compliant = tally.expanded;
   r.stats.nodes = static_cast<int>(s.pts.size());
-  r.stats.first_solution_iteration = expanded;
-  r.stats.edge_checks = checks;
+  r.stats.first_solution_iteration = tally.expanded;
+  r.stats.edge_checks = tally.checks;
   r.reason = std::string(take_port ? "port" : "starboard") + " grid " + at + "cost " + fmt(s.cost) + " (other side: " +
              (take_port ? (stb.ok ? "cost " + fmt(stb.cost) : stb.why) : (port.ok ? "cost " + fmt(port.cost) : port.why)) + ")";
   return r;

@@ -54,12 +54,24 @@ class DijkstraSv final : public Planner {
   // The tables of params().tables, loaded once per file name (under mu_: concurrent solves share
   // them read-only); "" or the loader's message.
   std::string ensure_tables(std::shared_ptr<const TurningTables>& out);
-  // Steps 1-6 at the constraints c and COLREG level lv (Step 1 only at the strictest; the previous
-  // plan kept only when `keep`, at the unreduced safe CPA); nullopt with `notes` extended when the
-  // grid has no path.
-  std::optional<Result> plan(const Problem& pb, const ConstraintParams& c, ColregLevel lv, bool strictest, bool keep,
-                             const Request& rq, const Hooks& hooks, const TurningTables& tt, std::string& notes,
-                             uint64_t& checks, int& expanded, int& colreg_rejects) const;
+  // One attempt of Steps 1-6: its constraints and COLREG level; Step 1 only at the strictest level,
+  // the previous plan kept only when `keep` (at the unreduced safe CPA).
+  struct Attempt {
+    const ConstraintParams& c;
+    ColregLevel level;
+    bool strictest, keep;
+  };
+  // What the attempts of one solve add up: the no-path notes, the edge checks, the grid vertices
+  // expanded, and the legs COLREG refused (at the level being tried).
+  struct Tally {
+    std::string notes;
+    uint64_t checks = 0;
+    int expanded = 0;
+    int colreg_rejects = 0;
+  };
+  // nullopt with tally.notes extended when the grid has no path.
+  std::optional<Result> plan(const Problem& pb, const Attempt& a, const Request& rq, const Hooks& hooks,
+                             const TurningTables& tt, Tally& tally) const;
   std::mutex mu_;
   DsvParams p_;
   std::shared_ptr<const TurningTables> tables_;
