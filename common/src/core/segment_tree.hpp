@@ -25,7 +25,8 @@ class SegmentTree {
   explicit SegmentTree(std::vector<Segment> segs);
   size_t size() const { return segs_.size(); }
   // min over segments of segment_distance(q0, q1, s); +inf when empty. Exact: the same
-  // per-segment function as a brute-force loop, with branch and bound on exact box distances.
+  // per-segment function as a brute-force loop, with branch and bound on exact box distances
+  // (a box far beyond the best so far is ruled out by the cheaper gap between boxes first).
   // With `bound`: min(bound, that), searching only where a segment could come closer than bound.
   double min_distance(geom::Vec2 q0, geom::Vec2 q1,
                       double bound = std::numeric_limits<double>::infinity()) const;
