@@ -1,6 +1,8 @@
 // The §5 predicate on canonical two-ship geometries (own ship at the origin heading north).
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "mpgc/opp/colreg.hpp"
 
 namespace opp = mpgc::opp;
@@ -279,4 +281,45 @@ TEST(ColregPinned, AStandOnShipActingDoesNotTurnToPort) {
   EXPECT_FALSE(opp::is_duty(opp::Obligation::kCrossingStandOn));
   EXPECT_FALSE(opp::is_duty(opp::Obligation::kOvertaken));
   EXPECT_TRUE(opp::is_duty(opp::Obligation::kHeadOn));
+}
+
+TEST(ColregPinned, OneLegObjectAlongALegAnswersAsAFreshOneAtEachPoint) {
+  // ValidityChecker checks a leg at many points with one PinnedLeg, whose course and directions are
+  // taken on first use: the answers must not depend on which point (or which check) asked first.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  opp::ColregParams p = kP;
+  p.port_turn_range = 6000;
+  p.port_turn_lead = 400;
+  p.risk_cpa = 1500;
+  p.act_range = 5000;
+  const opp::Obligation kinds[] = {opp::Obligation::kNone, opp::Obligation::kHeadOn, opp::Obligation::kCrossingGiveWay,
+                                   opp::Obligation::kOvertaking, opp::Obligation::kCrossingStandOn,
+                                   opp::Obligation::kOvertaken};
+  int differing_answers = 0;
+  for (int k = 0; k < 3000; ++k) {
+    opp::PinnedEncounter e = pinned(kinds[k % 6], 180.0 * u(rng), u(rng) < 0 ? -1 : 1);
+    e.speed0 = 4.0 + 2.0 * u(rng);
+    e.acted = u(rng) < 0;
+    e.at_risk_17c = u(rng) < -0.5;
+    if (u(rng) < 0) e.held_17c = 0.5 * u(rng);
+    const opp::Vec2 v = heading(180.0 * u(rng), 3.0 + 3.0 * u(rng)), w = heading(180.0 * u(rng), 3.0 + 3.0 * u(rng));
+    const opp::PinnedLeg leg(v, e);
+    bool first = true, first_apparent = true;
+    for (int i = 0; i < 8; ++i) {
+      const opp::Vec2 x{4000 * u(rng), 4000 * u(rng)}, y{4000 * u(rng), 4000 * u(rng)};
+      // Every other leg asks its first question of a throwaway object: the shared one then meets
+      // its first use at a later point, and by the other check.
+      const auto shared = (i + k) % 2 ? opp::colreg_check_pinned(x, y, w, leg, p)
+                                      : opp::colreg_check_pinned(x, y, w, opp::PinnedLeg(v, e), p);
+      const auto fresh = opp::colreg_check_pinned(x, v, y, w, e, p);
+      EXPECT_EQ(shared.compliant, fresh.compliant);
+      EXPECT_EQ(shared.situation, fresh.situation);
+      EXPECT_EQ(opp::colreg_check_apparent(x, y, w, leg, p), opp::colreg_check_apparent(x, v, y, w, e, p));
+      if (i > 0 && shared.compliant != first) ++differing_answers;
+      if (i > 0 && opp::colreg_check_apparent(x, y, w, leg, p) != first_apparent) ++differing_answers;
+      if (i == 0) first = shared.compliant, first_apparent = opp::colreg_check_apparent(x, y, w, leg, p);
+    }
+  }
+  EXPECT_GT(differing_answers, 1000);  // the points do reach different answers along one leg
 }

@@ -36,30 +36,63 @@ bool is_duty(Obligation o) {
   return o == Obligation::kHeadOn || o == Obligation::kCrossingGiveWay || o == Obligation::kOvertaking;
 }
 
+double PinnedLeg::course() const {
+  if (std::isnan(course_)) course_ = std::atan2(v_.y, v_.x);
+  return course_;
+}
+
+double PinnedLeg::turn() const {
+  if (std::isnan(turn_)) turn_ = std::remainder(course() - e_.course0, 2.0 * geo::kPi);
+  return turn_;
+}
+
+double PinnedLeg::turn_17c() const {
+  if (std::isnan(turn_17c_))
+    turn_17c_ = std::remainder(course() - (e_.course0 + (std::isnan(e_.held_17c) ? 0.0 : e_.held_17c)), 2.0 * geo::kPi);
+  return turn_17c_;
+}
+
+Vec2 PinnedLeg::ahead() const {
+  if (std::isnan(ahead_.x)) ahead_ = {std::cos(e_.course0), std::sin(e_.course0)};
+  return ahead_;
+}
+
+Vec2 PinnedLeg::along() const {
+  if (std::isnan(along_.x)) {
+    const double ref = e_.course0 + (std::isnan(e_.held_17c) ? 0.0 : e_.held_17c);
+    along_ = {std::cos(ref), std::sin(ref)};
+  }
+  return along_;
+}
+
 ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
+  return colreg_check_pinned(x0, y0, w, PinnedLeg(v, e), p);
+}
+
+ColregCheck colreg_check_pinned(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p) {
+  const PinnedEncounter& e = leg.encounter();
+  const Vec2 v = leg.v();
   if (e.obligation == Obligation::kNone) return colreg_check(x0, v, y0, w, p);
   ColregCheck out;
   out.situation = e.obligation;
-  const double vn = norm(v), wn = norm(w);
+  const double vn = leg.speed(), wn = norm(w);
   if (vn < p.min_speed) return out;
   const Vec2 d = y0 - x0;
-  // Computed where needed: most legs are decided before (the range opens), and atan2 is dear.
-  auto port_turn = [&] { return std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi) < -p.port_tolerance; };
+  // The leg's course is taken only where needed: most legs are decided before (the range opens).
+  auto port_turn = [&] { return leg.turn() < -p.port_tolerance; };
   // Rule 17(c) forbids turning toward the crossing ship while it is still on the port bow of the
   // course held (ahead of the beam, to port), even on a leg along which the range does not close
   // (DNV 12: a port turn round the ship's bow at d_safety, the range constant), if it is a risk now
   // or the leg passes it within risk_cpa: a leg back to the route that passes a ship 16 km off
   // wider than that is no action for it (paper s1_unexpected).
-  const Vec2 ahead{std::cos(e.course0), std::sin(e.course0)};
-  if (e.obligation == Obligation::kCrossingStandOn && norm(d) <= p.port_turn_range && dot(d, ahead) > 0.0 &&
-      cross(ahead, d) < 0.0 && port_turn() && (e.at_risk_17c || miss_distance(x0, v, y0, w) < p.risk_cpa)) {
+  if (e.obligation == Obligation::kCrossingStandOn && norm(d) <= p.port_turn_range && dot(d, leg.ahead()) > 0.0 &&
+      cross(leg.ahead(), d) < 0.0 && port_turn() && (e.at_risk_17c || miss_distance(x0, v, y0, w) < p.risk_cpa)) {
     out.compliant = false;
     return out;
   }
   if (e.obligation == Obligation::kCrossingStandOn) {  // 17(c): not to port for a ship on the port side
-    const double ref = e.course0 + (std::isnan(e.held_17c) ? 0.0 : e.held_17c);
-    const Vec2 along{std::cos(ref), std::sin(ref)};
-    const bool to_port = std::remainder(std::atan2(v.y, v.x) - ref, 2.0 * geo::kPi) < -p.port_tolerance;
+    const Vec2 along = leg.along();
+    const bool to_port = leg.turn_17c() < -p.port_tolerance;
     if (!to_port) return out;
     // Judged where the ship begins the turn, port_turn_lead back along the course held, and as
     // the evaluation judges whom a turn is for: a ship at risk on the course held then (its CPA
@@ -95,17 +128,23 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
 }
 
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p) {
+  return colreg_check_apparent(x0, y0, w, PinnedLeg(v, e), p);
+}
+
+bool colreg_check_apparent(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p) {
+  const PinnedEncounter& e = leg.encounter();
+  const Vec2 v = leg.v();
   if (e.obligation == Obligation::kNone) return true;
-  if (norm(v) < p.min_speed || dot(y0 - x0, v - w) <= 0.0) return true;  // not closing: no action owed
+  if (leg.speed() < p.min_speed || dot(y0 - x0, v - w) <= 0.0) return true;  // not closing: no action owed
   if (e.obligation == Obligation::kCrossingGiveWay && across_astern(e, w, x0 - y0)) return true;
-  const double turn = std::remainder(std::atan2(v.y, v.x) - e.course0, 2.0 * geo::kPi);
+  const double turn = leg.turn();
   // Rule 14 also after an alteration was made: coming back to the meeting course near the ship is
   // meeting it again (Annapolis: 31 deg to starboard and back within a minute, 2.9 km off).
   if (e.obligation == Obligation::kHeadOn && turn < p.head_on_turn && norm(y0 - x0) <= p.act_range &&
       miss_distance(x0, v, y0, w) < p.risk_cpa)
     return false;
   if (!(p.apparent_turn > p.port_tolerance) || e.completed) return true;
-  if (p.apparent_slowdown > 0.0 && norm(v) <= (1.0 - p.apparent_slowdown - p.apparent_slowdown_margin) * e.speed0)
+  if (p.apparent_slowdown > 0.0 && leg.speed() <= (1.0 - p.apparent_slowdown - p.apparent_slowdown_margin) * e.speed0)
     return true;
   const bool either = e.obligation == Obligation::kOvertaking || e.obligation == Obligation::kOvertaken;
   const double a = either ? std::fabs(turn) : turn, need = p.apparent_turn + p.apparent_turn_margin;

@@ -56,12 +56,13 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
     // §5 at the leg's start and every colreg_spacing along it (a long leg must not jump over the
     // zone). A pinned obligation holds from the moment the risk of collision was found, at any
     // range: crossing ahead of a give-way target just outside d_COLREG is still crossing ahead.
+    const PinnedLeg leg(vel, tg.pinned);
     for (double s = 0.0; s < len; s += c_.colreg_spacing) {
       const Vec2 xs = a + (s / len) * (b - a);
       const Vec2 ys = y + (s * inv_u_) * tg.v;
-      if ((pinned || norm2(xs - ys) < dc2_) && !colreg_check_pinned(xs, vel, ys, tg.v, tg.pinned, c_.colreg).compliant)
+      if ((pinned || norm2(xs - ys) < dc2_) && !colreg_check_pinned(xs, ys, tg.v, leg, c_.colreg).compliant)
         return kColreg;
-      if (pinned && level == ColregLevel::kFull && !colreg_check_apparent(xs, vel, ys, tg.v, tg.pinned, c_.colreg))
+      if (pinned && level == ColregLevel::kFull && !colreg_check_apparent(xs, ys, tg.v, leg, c_.colreg))
         return kColreg;
     }
   }

@@ -127,6 +127,31 @@ inline bool across_astern(const PinnedEncounter& e, Vec2 w, Vec2 r) {
   return e.track_side != 0 && track_side(w, r) != e.track_side && dot(r, w) < 0.0;
 }
 
+// One leg's velocity v against one pinned encounter e, with what the checks at every point along
+// the leg share (ValidityChecker checks a leg every colreg_spacing): its speed, the encounter's
+// directions, and the leg's course relative to them. Each atan2, remainder and sincos is taken
+// once a leg, when a check first needs it, by the same expression as a single check would (the
+// answers are the same bit for bit). `e` must outlive it.
+class PinnedLeg {
+ public:
+  PinnedLeg(Vec2 v, const PinnedEncounter& e) : v_(v), speed_(norm(v)), e_(e) {}
+  Vec2 v() const { return v_; }
+  double speed() const { return speed_; }
+  const PinnedEncounter& encounter() const { return e_; }
+  double turn() const;      // [rad] the leg's course minus course0, in [-pi, pi]
+  double turn_17c() const;  // [rad] ... minus course0 + held_17c, rule 17(c)'s course held
+  Vec2 ahead() const;       // the direction of course0
+  Vec2 along() const;       // the direction of course0 + held_17c
+
+ private:
+  double course() const;
+  Vec2 v_;
+  double speed_;
+  const PinnedEncounter& e_;
+  mutable double course_ = std::nan(""), turn_ = std::nan(""), turn_17c_ = std::nan("");
+  mutable Vec2 ahead_{std::nan(""), 0.0}, along_{std::nan(""), 0.0};
+};
+
 // One leg (own at x0 with velocity v, target at y0 with velocity w, same time) against a pinned
 // obligation. A leg on which the range opens is clear. Otherwise head-on: the target on the port
 // side (eq. 19) and no alteration to port of course0 beyond port_tolerance; crossing stand-on,
@@ -136,6 +161,8 @@ inline bool across_astern(const PinnedEncounter& e, Vec2 w, Vec2 r) {
 // first (eq. 15), until the own ship is across the target's track astern of it; overtaking: the
 // target first at x_c (§5.3).
 ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
+// The same at a point x0 of a leg (the target at y0 then).
+ColregCheck colreg_check_pinned(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p);
 
 // Rule 8(b) for a leg against a pinned obligation (the full COLREG level only: the first
 // relaxation drops it, "if the circumstances of the case admit"): false when the range closes
@@ -145,5 +172,6 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
 // astern is free. With it, rule 14(a): a closing head-on leg within act_range that would pass
 // within risk_cpa has altered to starboard by head_on_turn at least (at any speed).
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
+bool colreg_check_apparent(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p);
 
 }  // namespace mpgc::opp
