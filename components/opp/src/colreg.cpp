@@ -69,7 +69,7 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEn
   return colreg_check_pinned(x0, y0, w, PinnedLeg(v, e), p);
 }
 
-ColregCheck colreg_check_pinned(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p) {
+ColregCheck colreg_check_pinned(const Vec2& x0, const Vec2& y0, const Vec2& w, const PinnedLeg& leg, const ColregParams& p) {
   const PinnedEncounter& e = leg.encounter();
   const Vec2 v = leg.v();
   if (e.obligation == Obligation::kNone) return colreg_check(x0, v, y0, w, p);
@@ -131,7 +131,7 @@ bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncount
   return colreg_check_apparent(x0, y0, w, PinnedLeg(v, e), p);
 }
 
-bool colreg_check_apparent(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p) {
+bool colreg_check_apparent(const Vec2& x0, const Vec2& y0, const Vec2& w, const PinnedLeg& leg, const ColregParams& p) {
   const PinnedEncounter& e = leg.encounter();
   const Vec2 v = leg.v();
   if (e.obligation == Obligation::kNone) return true;

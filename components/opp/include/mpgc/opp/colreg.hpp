@@ -162,7 +162,7 @@ class PinnedLeg {
 // target first at x_c (§5.3).
 ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
 // The same at a point x0 of a leg (the target at y0 then).
-ColregCheck colreg_check_pinned(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p);
+ColregCheck colreg_check_pinned(const Vec2& x0, const Vec2& y0, const Vec2& w, const PinnedLeg& leg, const ColregParams& p);
 
 // Rule 8(b) for a leg against a pinned obligation (the full COLREG level only: the first
 // relaxation drops it, "if the circumstances of the case admit"): false when the range closes
@@ -172,6 +172,6 @@ ColregCheck colreg_check_pinned(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, 
 // astern is free. With it, rule 14(a): a closing head-on leg within act_range that would pass
 // within risk_cpa has altered to starboard by head_on_turn at least (at any speed).
 bool colreg_check_apparent(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
-bool colreg_check_apparent(Vec2 x0, Vec2 y0, Vec2 w, const PinnedLeg& leg, const ColregParams& p);
+bool colreg_check_apparent(const Vec2& x0, const Vec2& y0, const Vec2& w, const PinnedLeg& leg, const ColregParams& p);
 
 }  // namespace mpgc::opp
