@@ -161,7 +161,9 @@ class PinnedLeg {
 // first (eq. 15), until the own ship is across the target's track astern of it; overtaking: the
 // target first at x_c (§5.3).
 ColregCheck colreg_check_pinned(Vec2 x0, Vec2 v, Vec2 y0, Vec2 w, const PinnedEncounter& e, const ColregParams& p);
-// The same at a point x0 of a leg (the target at y0 then).
+// The same at a point x0 of a leg (the target at y0 then). The points come by reference: the
+// planner's innermost check, and passed by value the callee's packing of each Vec2 into one
+// register stalled on store forwarding (half of its own time in s1_colreg's profile).
 ColregCheck colreg_check_pinned(const Vec2& x0, const Vec2& y0, const Vec2& w, const PinnedLeg& leg, const ColregParams& p);
 
 // Rule 8(b) for a leg against a pinned obligation (the full COLREG level only: the first
