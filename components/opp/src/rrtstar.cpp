@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <random>
@@ -29,6 +30,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
+__extension__ typedef unsigned __int128 Key128;  // GCC's and Clang's; ISO C++ has no 128-bit integer
 
 void require(bool ok, const char* field, const std::string& why) {
   if (!ok) throw std::invalid_argument(std::string("opp::Params.") + field + " " + why);
@@ -319,7 +321,20 @@ class Tree {
     for (const auto& e : nbh_) has_near = has_near || e.second == near;
     if (!has_near) nbh_.emplace_back(norm2(x - nodes_[near].p), near);
     // The neighbour set arrives in heap / cell order: sort for a deterministic, readable order.
-    std::sort(nbh_.begin(), nbh_.end());
+    // Sorted as one 128-bit key each, (the distance's bits, the index): a non-negative double's
+    // bits order as the double does, so the order is the pairs' own, with a branch-free compare.
+    keys_.clear();
+    for (const auto& [d2, j] : nbh_) {
+      uint64_t b;
+      std::memcpy(&b, &d2, sizeof b);
+      keys_.push_back((static_cast<Key128>(b) << 32) | static_cast<uint32_t>(j));
+    }
+    std::sort(keys_.begin(), keys_.end());
+    for (size_t i = 0; i < keys_.size(); ++i) {
+      const uint64_t b = static_cast<uint64_t>(keys_[i] >> 32);
+      std::memcpy(&nbh_[i].first, &b, sizeof b);
+      nbh_[i].second = static_cast<int>(static_cast<uint32_t>(keys_[i]));
+    }
     // fixed_cache_[j]: 0 unknown, 1 clear, 2 blocked for the segment j <-> current new point.
     for (const auto& e : nbh_) fixed_cache_[e.second] = 0;
   }
@@ -525,6 +540,7 @@ class Tree {
   std::vector<Node> nodes_;
   std::vector<uint8_t> fixed_cache_;
   std::vector<std::pair<double, int>> nbh_;
+  std::vector<Key128> keys_;
   std::vector<Cand> cand_, costed_;
   std::vector<Upd> upd_;
   std::vector<int> stack_;
