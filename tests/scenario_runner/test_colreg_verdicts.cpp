@@ -351,6 +351,27 @@ TEST(ColregVerdicts, APortTurnOnceTheCrossingShipIsOnTheStarboardBowIsNot17c) {
   EXPECT_EQ(e.not_turned_to_port, Verdict::kPass);
 }
 
+// The side is judged where the port turn begins, not at the manoeuvre detector's window start. With
+// the window of the DNV suite's scale (60 s here: delta_course_md 2 deg at 2/60 deg/s) the window
+// of the port turn above starts at 91 s, with the ship still 15 deg on the port bow; the turn
+// begins at 150 s with it on the starboard bow: not 17(c). A turn begun with the ship on the port
+// bow still is (the stage-3 case above, judged with the same long window).
+TEST(ColregVerdicts, Rule17cJudgesTheSideWhereTheTurnBeginsNotAtTheDetectorsWindowStart) {
+  sr::EvaluationParams p;
+  p.epsilon_d_course = p.delta_course_md / 60.0;
+  ASSERT_NEAR(p.manoeuvre_window(), 60.0, 1e-9);
+  const auto t = sr::synthetic::times(500, 1.0);
+  auto so = sail(1, 10, 2000, -700, 3 * kPi / 4, 7, {}, t);
+  const auto e = one(sr::synthetic::run_of(t, sail(0, 10, 0, 0, 0, 7, {{150, deg2rad(-40), 7}}, t), {so}), p);
+  ASSERT_EQ(e.situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(e.not_turned_to_port, Verdict::kPass);
+  const auto t2 = sr::synthetic::times(700, 1.0);
+  auto so2 = sail(1, 10, 2000, -2000, kPi / 2, 7, {}, t2);
+  const auto port = one(sr::synthetic::run_of(t2, sail(0, 10, 0, 0, 0, 7, {{250, deg2rad(-40), 7}}, t2), {so2}), p);
+  ASSERT_EQ(port.situation, EncounterType::kCrossingStandOn);
+  EXPECT_EQ(port.not_turned_to_port, Verdict::kFail);
+}
+
 // The encounter begins with the risk of collision, not with the range: the own ship heads east,
 // the target 2 km north sails south (no risk), then the own ship turns north onto the target's
 // reciprocal (head-on) and later alters to starboard. Classified when the range first fell below

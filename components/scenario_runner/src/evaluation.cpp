@@ -542,8 +542,15 @@ EncounterResult evaluate_one(const RunRecord& run, const ShipTrack& tgt, const s
         bool to_port = false;
         for (const Episode& ep : episodes) {
           if (!made_for(ep, own, tg, start, kcpa, p) || ep.change < p.theta_sm_lim || !may_act(ep.detected)) continue;
-          const Vec2 d = pos(tg[ep.from]) - pos(own[ep.from]);
-          const bool on_port_side = geo::angle_diff(std::atan2(d.y, d.x), course(own[ep.from])) < 0.0;
+          // "On her own port side" when she alters: where the course last was the one held (within
+          // half delta_course_md, the detector's own "no change"), not at the detector's window
+          // start, a whole window earlier (59 s at the DNV suite's scale: DNV 48's port turn began
+          // with the crossing ship 6 deg on the starboard bow, 0.15 deg to port a window before).
+          std::size_t began = ep.from;
+          for (std::size_t i = ep.from; i <= ep.detected; ++i)
+            if (std::fabs(geo::angle_diff(course(own[i]), course(own[ep.from]))) < 0.5 * p.delta_course_md) began = i;
+          const Vec2 d = pos(tg[began]) - pos(own[began]);
+          const bool on_port_side = geo::angle_diff(std::atan2(d.y, d.x), course(own[began])) < 0.0;
           double port = 0.0;
           for (std::size_t i = ep.from; i <= kcpa; ++i)
             port = std::max(port, -geo::angle_diff(course(own[i]), course(own[ep.from])));
