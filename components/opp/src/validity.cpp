@@ -47,8 +47,9 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
     const double lim = escape ? std::min(ds * ds, norm2(r0) * (1.0 - 1e-9)) : ds * ds;
     if (geom::closest_approach(r0, vel - tg.v, T).dist2 < lim) return kTarget;  // eq. 3-4
     const bool pinned = tg.pinned.obligation != Obligation::kNone;
-    // The first relaxation keeps the own ship's duties; a stand-on target is then unconstrained
-    // (rule 17(b): it may act as best aids to avoid collision).
+    // The first relaxation keeps the own ship's duties, rule 8(b)'s readily apparent action among
+    // them; a stand-on target is then unconstrained (rule 17(b): it may act as best aids to avoid
+    // collision).
     const Obligation o = tg.pinned.obligation;
     if (level == ColregLevel::kNone || (level == ColregLevel::kPinned && !is_duty(o)) ||
         (level == ColregLevel::kPinned17c && !is_duty(o) && o != Obligation::kCrossingStandOn))
@@ -62,7 +63,7 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
       const Vec2 ys = y + (s * inv_u_) * tg.v;
       if ((pinned || norm2(xs - ys) < dc2_) && !colreg_check_pinned(xs, ys, tg.v, leg, c_.colreg).compliant)
         return kColreg;
-      if (pinned && level == ColregLevel::kFull && !colreg_check_apparent(xs, ys, tg.v, leg, c_.colreg))
+      if (pinned && (level == ColregLevel::kFull || is_duty(o)) && !colreg_check_apparent(xs, ys, tg.v, leg, c_.colreg))
         return kColreg;
     }
   }
