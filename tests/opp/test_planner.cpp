@@ -7,6 +7,7 @@
 #include "mpgc/opp/chart_obstacles.hpp"
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
+#include "mpgc/opp/validity.hpp"
 
 namespace opp = mpgc::opp;
 
@@ -341,9 +342,9 @@ TEST(PlannerColreg, WithoutColregTheSameProblemIsPlannedUnconstrained) {
 }
 
 // ---- Fall-backs. ----
-TEST(PlannerFallback, RelaxedWhenNoCompliantPathExists) {
-  // Head-on in a narrow canal with the target on the own starboard half: passing it on the own
-  // port side (eq. 19) is impossible, passing starboard-to-starboard is possible.
+// Head-on in a narrow canal with the target on the own starboard half: passing it on the own
+// port side (eq. 19) is impossible, passing starboard-to-starboard is possible.
+opp::Scenario canal_head_on() {
   auto s = canonical({1, {5000, 250}, {-6, 0}}, 8000);
   std::vector<opp::Vec2> walls;
   for (double n = -3000; n <= 10000; n += 25) {
@@ -357,6 +358,11 @@ TEST(PlannerFallback, RelaxedWhenNoCompliantPathExists) {
   s.problem.bounds = {-1000, -1000, 9000, 1000};
   s.problem.goal.p = {8000, -200};
   s.params.max_turn = kPi / 6;
+  return s;
+}
+
+TEST(PlannerFallback, RelaxedWhenNoCompliantPathExists) {
+  const auto s = canal_head_on();
   const auto r = run(s, 2, 6000);
   ASSERT_EQ(r.status, opp::Status::kRelaxed) << r.reason;
   EXPECT_TRUE(r.relaxed);
@@ -364,6 +370,32 @@ TEST(PlannerFallback, RelaxedWhenNoCompliantPathExists) {
   EXPECT_FALSE(r.reason.empty());
   EXPECT_EQ(opp::check_path(s.problem, s.params, points(r), false), "");
   expect_valid(s.problem, s.params, r);
+}
+
+TEST(PlannerFallback, ARelaxedReplanStartsFromThePreviousRelaxedPlan) {
+  // Re-planned with the previous relaxed plan as the warm path and only 20 iterations past the
+  // compliant share: the previous plan, still valid at the relaxed level, is the incumbent there,
+  // so the new plan is no dearer (a fresh relaxed tree of 20 iterations cannot match a plan of
+  // 6000). The warm path is no help at the full level, where it is not compliant.
+  const auto s = canal_head_on();
+  const auto r1 = run(s, 2, 6000);
+  ASSERT_EQ(r1.status, opp::Status::kRelaxed) << r1.reason;
+  opp::Params prm = s.params;
+  prm.seed = 7;
+  prm.max_iterations = 400;
+  prm.compliant_share = 0.95;
+  for (const bool warm : {true, false}) {
+    const auto r2 = opp::plan(s.problem, prm, {}, warm ? points(r1) : std::vector<opp::Vec2>{});
+    if (!warm) {
+      EXPECT_FALSE(r2.stats.warm_started);
+      EXPECT_TRUE(r2.path.empty() || r2.cost.total > r1.cost.total + 1.0) << "cost " << r2.cost.total;
+      continue;
+    }
+    ASSERT_EQ(r2.status, opp::Status::kRelaxed) << r2.reason;
+    EXPECT_TRUE(r2.stats.warm_started);
+    EXPECT_LE(r2.cost.total, r1.cost.total + 1e-6);
+    expect_valid(s.problem, prm, r2);
+  }
 }
 
 TEST(PlannerFallback, NoPathWhenTheGoalIsWalledIn) {
@@ -516,6 +548,42 @@ TEST(PlannerFallback, FirstRelaxationKeepsThePinnedObligations) {
     starboard_free += passing_side(f, t) > 0;
   }
   EXPECT_GT(starboard_free, 0);
+}
+
+// Rule 8(b) is one of the own ship's duties: the first relaxation (stand-on targets unconstrained)
+// still asks a closing leg for a pinned head-on ship to hold the course or alter readily
+// apparently; only the last (kNone) drops it. For a stand-on target it is asked at the full level
+// alone. (A relaxed plan kept from re-plan to re-plan turned 29 deg for two head-on ships: DNV 25.)
+TEST(PlannerFallback, RelaxedLevelsKeepRule8bForTheOwnShipsDuties) {
+  opp::ConstraintParams c;
+  opp::Problem pb;
+  pb.start = {0, 0};
+  pb.heading = 0;
+  pb.speed = 5;
+  pb.goal.p = {30000, 0};
+  pb.bounds = {-20000, -20000, 40000, 20000};
+  pb.colreg = true;
+  opp::Target t{1, {12000, 0}, {-5, 0}};
+  t.pinned = {opp::Obligation::kHeadOn, 0.0, 0, kPi};
+  t.pinned.speed0 = 5;
+  pb.targets = {t};
+  auto leg = [&](double deg, opp::ColregLevel level) {
+    const opp::Vec2 b = 500.0 * opp::Vec2{std::cos(deg * kPi / 180), std::sin(deg * kPi / 180)};
+    return opp::ValidityChecker(pb, c).moving(pb.start, 0.0, b, 500.0, level);
+  };
+  for (const auto level : {opp::ColregLevel::kFull, opp::ColregLevel::kPinned17c, opp::ColregLevel::kPinned}) {
+    EXPECT_EQ(leg(20, level), opp::ValidityChecker::kColreg) << static_cast<int>(level);
+    EXPECT_EQ(leg(35, level), opp::ValidityChecker::kValid) << static_cast<int>(level);
+  }
+  EXPECT_EQ(leg(20, opp::ColregLevel::kNone), opp::ValidityChecker::kValid);
+  // The same ship crossing from port, the own ship standing on: a 20 deg leg is judged at the full
+  // level only.
+  pb.targets[0].p = {12000, -3000};
+  pb.targets[0].v = {-3.5, 3.5};
+  pb.targets[0].pinned = {opp::Obligation::kCrossingStandOn, 0.0, 0, 0.75 * kPi};
+  pb.targets[0].pinned.speed0 = 5;
+  EXPECT_EQ(leg(20, opp::ColregLevel::kFull), opp::ValidityChecker::kColreg);
+  EXPECT_EQ(leg(20, opp::ColregLevel::kPinned), opp::ValidityChecker::kValid);
 }
 
 // Informed sampling (plan.informed): once a path exists only the ellipse where a cheaper one can

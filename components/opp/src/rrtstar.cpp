@@ -624,6 +624,17 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
         if (tree->colreg == ColregLevel::kFull) res.stats.iterations_compliant = res.stats.iterations;
         // §6: relax; the tree stays valid under the weaker constraint.
         tree->colreg = next(tree->colreg);
+        // The previous plan, if valid at the level now in force, is the incumbent there as it is
+        // at the full one: a relaxed manoeuvre is held from re-plan to re-plan unless a cheaper
+        // one is found, not drawn afresh each time (DNV 54 swung between port and starboard for
+        // 400 s, then ran out of room).
+        if (!warm.empty() && tree->seed_chain(warm_tail(warm, problem.start))) {
+          res.stats.warm_started = true;
+          best_cost = tree->best_cost();
+          best_pts = tree->best_path();
+          best_level = tree->best_level();
+          last_improvement = res.stats.iterations;
+        }
       }
     }
     // A tree whose solution has not improved for restart_after iterations is stuck in one timing
