@@ -22,9 +22,10 @@ for d in dirs:
         log = os.path.join(os.path.dirname(m), 'components.log')
         if os.path.exists(log):
             t = open(log, errors='replace').read()
-            k = len(re.findall(r'info plan \d+ .*speed reduced to', t))
+            # The planner's own lines only: guidance_control logs every plan it takes with the same reason.
+            k = len(re.findall(r'^\[opp\].* info plan \d+ .*speed reduced to', t, re.M))
             speed_plans += k; speed_runs += k > 0
-            emerg += len(re.findall(r'info plan \d+ .*emergency \(rule 17', t))
+            emerg += len(re.findall(r'^\[opp\].* info plan \d+ .*emergency \(rule 17', t, re.M))
             hold_runs += 'stand-on (rule 17(a))' in t
 print(f"runs {runs}, passed {passed}")
 if alts:
