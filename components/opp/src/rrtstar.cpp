@@ -594,10 +594,18 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
   }
   if (!warm.empty()) res.stats.warm_started = tree->seed_chain(warm_tail(warm, problem.start));
   // Best over restarted trees (the incumbent survives a restart, so the cost stays monotone).
-  double best_cost = tree->best_cost();
-  std::vector<Vec2> best_pts = tree->best_path();
-  ColregLevel best_level = tree->best_level();
+  double best_cost = std::numeric_limits<double>::infinity();
+  std::vector<Vec2> best_pts;
+  ColregLevel best_level = tree->colreg;
   int last_improvement = 0;
+  auto adopt = [&] {
+    if (!(tree->best_cost() < best_cost)) return;
+    best_cost = tree->best_cost();
+    best_pts = tree->best_path();
+    best_level = tree->best_level();
+    last_improvement = res.stats.iterations;
+  };
+  adopt();
   // Budget shares after which a level still without a solution gives way to the next (§6): the
   // full constraint for compliant_share; the pinned duties (rule 17(b): the stand-on ship may act
   // when the other does not), with rule 17(c) for a quarter of the rest and without it to half the
@@ -630,10 +638,7 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
         // 400 s, then ran out of room).
         if (!warm.empty() && tree->seed_chain(warm_tail(warm, problem.start))) {
           res.stats.warm_started = true;
-          best_cost = tree->best_cost();
-          best_pts = tree->best_path();
-          best_level = tree->best_level();
-          last_improvement = res.stats.iterations;
+          adopt();
         }
       }
     }
@@ -649,12 +654,7 @@ Result plan(const Problem& problem, const Params& params, const Hooks& hooks, co
     }
     tree->incumbent = best_cost;
     tree->iterate();
-    if (tree->best_cost() < best_cost) {
-      best_cost = tree->best_cost();
-      best_pts = tree->best_path();
-      best_level = tree->best_level();
-      last_improvement = res.stats.iterations;
-    }
+    adopt();
     if (hooks.progress) hooks.progress(res.stats.iterations, best_cost);
   }
   if (tree->colreg == ColregLevel::kFull) res.stats.iterations_compliant = res.stats.iterations;
