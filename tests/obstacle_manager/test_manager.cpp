@@ -120,6 +120,38 @@ TEST(Moving, TracksBecomeObstaclesWithDomain) {
   EXPECT_NE(om::check_target(t, p).find("length"), std::string::npos);
 }
 
+// A ship at rest: its track's velocity is noise, and eq. 3 would carry it over the plan's horizon.
+TEST(Moving, AShipAtRestWhoseSpeedIsWithinItsNoiseIsPublishedStopped) {
+  om::DomainParams p;
+  om::TargetState t;
+  t.id = 7;
+  t.vx = -0.057;  // Annapolis's stopped motor vessel, 141 m from the goal
+  t.vy = 0.051;
+  t.var_vx = t.var_vy = 0.05 * 0.05;
+  EXPECT_EQ(om::check_target(t, p), "");
+  auto o = om::to_moving_obstacle(t, p);
+  EXPECT_EQ(o.vx, 0.0);
+  EXPECT_EQ(o.vy, 0.0);
+  t.var_vx = t.var_vy = 0.01 * 0.01;  // the same speed, but 5 sigmas from 0: it moves
+  o = om::to_moving_obstacle(t, p);
+  EXPECT_EQ(o.vx, -0.057);
+  EXPECT_EQ(o.vy, 0.051);
+  t.vx = 0.6;  // a fresh track's large sigma never stops a ship faster than stopped_speed
+  t.vy = 0.0;
+  t.var_vx = t.var_vy = 25.0;
+  EXPECT_EQ(om::to_moving_obstacle(t, p).vx, 0.6);
+  t.vx = 0.3;
+  EXPECT_EQ(om::to_moving_obstacle(t, p).vx, 0.0);
+  p.stopped_speed = 0.0;  // off
+  EXPECT_EQ(om::to_moving_obstacle(t, p).vx, 0.3);
+  t.var_vy = -1;
+  EXPECT_NE(om::check_target(t, p).find("negative velocity variance"), std::string::npos);
+  t.var_vy = INFINITY;
+  EXPECT_NE(om::check_target(t, p).find("not finite"), std::string::npos);
+  p.stopped_sigmas = NAN;
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+}
+
 // Issue 15: stale tracks age out, uncertainty grows with age, silence is reported.
 namespace {
 constexpr int64_t kS = 1'000'000'000;  // [ns] per second

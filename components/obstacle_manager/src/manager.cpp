@@ -102,14 +102,19 @@ void DomainParams::validate() const {
   if (!std::isfinite(lengths) || lengths < 0.0) throw std::invalid_argument("DomainParams.lengths must be >= 0");
   if (!(max_speed > 0.0)) throw std::invalid_argument("DomainParams.max_speed must be > 0");
   if (!(max_range > 0.0)) throw std::invalid_argument("DomainParams.max_range must be > 0");
+  if (!std::isfinite(stopped_speed) || stopped_speed < 0.0)
+    throw std::invalid_argument("DomainParams.stopped_speed must be >= 0 m/s");
+  if (!std::isfinite(stopped_sigmas) || stopped_sigmas < 0.0)
+    throw std::invalid_argument("DomainParams.stopped_sigmas must be >= 0");
 }
 
 std::string check_target(const TargetState& t, const DomainParams& p) {
   if (t.deleted) return "deleted";
   if (t.tentative && !p.tentative) return "tentative";
-  for (double v : {t.x, t.y, t.vx, t.vy, t.var_x, t.var_y, t.since_update})
+  for (double v : {t.x, t.y, t.vx, t.vy, t.var_x, t.var_y, t.var_vx, t.var_vy, t.since_update})
     if (!std::isfinite(v)) return "track " + std::to_string(t.id) + ": state is not finite";
   if (t.var_x < 0.0 || t.var_y < 0.0) return "track " + std::to_string(t.id) + ": negative position variance";
+  if (t.var_vx < 0.0 || t.var_vy < 0.0) return "track " + std::to_string(t.id) + ": negative velocity variance";
   if (t.since_update < 0.0) return "track " + std::to_string(t.id) + ": negative since_update";
   const double speed = std::hypot(t.vx, t.vy);
   if (speed > p.max_speed)
@@ -126,8 +131,10 @@ MovingObstacleOut to_moving_obstacle(const TargetState& t, const DomainParams& p
   o.mmsi = t.mmsi;
   o.x = t.x;
   o.y = t.y;
-  o.vx = t.vx;
-  o.vy = t.vy;
+  const double speed = std::hypot(t.vx, t.vy);
+  const bool stopped = speed < p.stopped_speed && speed < p.stopped_sigmas * std::sqrt(t.var_vx + t.var_vy);
+  o.vx = stopped ? 0.0 : t.vx;
+  o.vy = stopped ? 0.0 : t.vy;
   o.radius = std::isnan(t.length) ? p.min_radius : std::max(p.min_radius, p.lengths * t.length);
   o.position_std = std::sqrt(std::max(t.var_x, t.var_y));
   return o;

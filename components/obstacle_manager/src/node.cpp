@@ -42,6 +42,11 @@ void declare(rt::ParamSet& ps, NodeParams& p) {
   ps.add("moving.min_radius", &p.domain.min_radius, 50.0, "m", 0.0, 1e4, "ship-domain radius when the length is unknown");
   ps.add("moving.lengths", &p.domain.lengths, 2.0, "-", 0.0, 100.0, "ship-domain radius in target lengths");
   ps.add("moving.max_speed", &p.domain.max_speed, 40.0, "m/s", 1.0, 200.0, "faster tracks are rejected");
+  ps.add("moving.stopped_speed", &p.domain.stopped_speed, 0.5, "m/s", 0.0, 5.0,
+         "a track slower than this whose speed is within moving.stopped_sigmas velocity sigmas of 0 is published "
+         "stopped (a ship at rest: its velocity is noise, which eq. 3 would carry over the plan's horizon)");
+  ps.add("moving.stopped_sigmas", &p.domain.stopped_sigmas, 2.0, "-", 0.0, 10.0,
+         "see moving.stopped_speed; the sigma is sqrt(var_vx + var_vy) of the track's covariance");
   ps.add("moving.tentative", &p.domain.tentative, false, "also pass on tentative tracks");
   ps.add("tracks.max_age", &p.aging.max_age, 60.0, "s", 0.1, 3600.0,
          "drop the last list's obstacles when situational_awareness has been silent this long (while it "

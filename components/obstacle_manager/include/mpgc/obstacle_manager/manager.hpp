@@ -57,6 +57,12 @@ struct DomainParams {
   double lengths = 2.0;         // [-] radius = max(min_radius, lengths * length overall)
   double max_speed = 40.0;      // [m/s] faster tracks are rejected as implausible
   double max_range = 1.0e6;     // [m] tracks farther than this from the origin are rejected
+  // A ship making no way has a track whose velocity is noise (Annapolis: 0.03-0.08 m/s at rest);
+  // eq. 3 carries that noise over a plan's horizon (1000 s: 30-80 m, any direction). A track
+  // slower than stopped_speed whose speed is within stopped_sigmas x its velocity sigma
+  // (sqrt(var_vx + var_vy): 2 covers 98 % of a stopped ship's speeds) is published stopped.
+  double stopped_speed = 0.5;   // [m/s] about 1 kn; 0 turns the test off
+  double stopped_sigmas = 2.0;  // [-]
   bool tentative = false;       // [-] also pass on tentative tracks
   void validate() const;
 };
@@ -67,6 +73,7 @@ struct TargetState {
   double x = 0, y = 0;     // [m] NED at the time of validity
   double vx = 0, vy = 0;   // [m/s]
   double var_x = 0, var_y = 0;  // [m^2] position variances (covariance diagonal)
+  double var_vx = 0, var_vy = 0;  // [m^2/s^2] velocity variances (covariance diagonal)
   double length = std::numeric_limits<double>::quiet_NaN();  // [m] NaN when unknown
   double since_update = 0;  // [s] since the last measurement, at the time of validity
   bool tentative = false;

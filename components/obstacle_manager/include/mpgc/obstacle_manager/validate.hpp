@@ -42,6 +42,8 @@ inline TargetState target_state(const msg::Track& t) {
   ts.vy = t.vy;
   ts.var_x = t.cov[0];
   ts.var_y = t.cov[5];
+  ts.var_vx = t.cov[10];
+  ts.var_vy = t.cov[15];
   ts.length = t.length;
   ts.since_update = t.since_update;
   ts.tentative = t.status == msg::TrackStatus::TRACK_TENTATIVE;
