@@ -94,6 +94,29 @@ TEST(FixedObstacleMap, NearestAndRadiusEqualBruteForceOnRandomSets) {
   }
 }
 
+// The nearest-point search starts from a grid of candidates over the points' box: two long
+// densified shores (seed 000's canal), queries inside, far outside (the grid's edge cells) and at
+// coordinates no int cell index could hold (squared distances overflow past 1e154).
+TEST(FixedObstacleMap, NearestFromTheStartingGridEqualsBruteForceOffLongShores) {
+  std::vector<mpgc::geom::Vec2> pts;
+  for (int i = 0; i <= 2700; ++i) {
+    pts.push_back({2458.0 + 20.0 * i / std::sqrt(2.0), -8858.0 + 20.0 * i / std::sqrt(2.0)});
+    pts.push_back({-8858.0 + 20.0 * i / std::sqrt(2.0), 2458.0 + 20.0 * i / std::sqrt(2.0)});
+  }
+  om::FixedObstacleMap map(pts, {});
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> q(-60000.0, 90000.0);
+  std::vector<mpgc::geom::Vec2> queries{{1e12, -1e12}, {-1e150, 1e150}, {0, 0}};
+  for (int k = 0; k < 3000; ++k) queries.push_back({q(rng), q(rng)});
+  for (const auto& p : queries) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& o : pts) best = std::min(best, std::hypot(o.x - p.x, o.y - p.y));
+    ASSERT_NEAR(map.nearest_distance(p), best, 1e-9 * std::max(1.0, best)) << p.x << ", " << p.y;
+    const size_t i = map.nearest_index(p);
+    ASSERT_NEAR(std::hypot(pts[i].x - p.x, pts[i].y - p.y), best, 1e-9 * std::max(1.0, best));
+  }
+}
+
 TEST(FixedObstacleMap, RadiusIsInclusiveAndSortedByDistance) {
   om::FixedObstacleMap map({{0, 0}, {3, 4}, {1, 0}, {0, 10}}, {});
   EXPECT_EQ(map.radius({0, 0}, 5.0), (std::vector<size_t>{0, 2, 1}));

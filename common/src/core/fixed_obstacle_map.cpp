@@ -39,6 +39,25 @@ struct InclusiveRadius {
   double worstDist() const { return std::nextafter(r2, kInf); }
 };
 
+// The nearest point with a known candidate: the search starts bounded by the candidate's distance,
+// so it visits only the kd-tree's cells closer than that. Strictly closer points replace it, as in
+// nanoflann's KNNResultSet, and every distance is the tree's own evalMetric: the distance found is
+// the same bit for bit as an unbounded search's.
+struct BoundedNearest {
+  size_t idx;
+  double d2;
+  size_t size() const { return 1; }
+  bool full() const { return true; }
+  bool addPoint(double d, size_t i) {
+    if (d < d2) {
+      d2 = d;
+      idx = i;
+    }
+    return true;
+  }
+  double worstDist() const { return d2; }
+};
+
 void check_query(geom::Vec2 p, const char* what) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y))
     throw std::invalid_argument(std::string(what) + ": query point is not finite (" + std::to_string(p.x) + ", " +
@@ -59,6 +78,16 @@ struct FixedObstacleMap::Impl {
   detail::SegmentTree edges_and_points;  // min distance: polygon edges + points (zero length)
   detail::SegmentTree edges;             // ray crossings: polygon edges only
   BoxNE box{0, 0, 0, 0};
+  // Starting candidates for nearest(): the nearest point of each cell's centre, on a grid over the
+  // points' box (a query outside takes the closest cell's; any point is a valid start). A query
+  // far off a long shore (the canal's walls, kilometres away) otherwise starts from the point of
+  // the tree's cell it falls in, often far along the shore, and visits every cell within that
+  // distance (issue 20: a quarter of the canal's planning time).
+  struct HintGrid {
+    double x0 = 0, y0 = 0, inv_h = 0;
+    int nx = 0, ny = 0;
+    std::vector<uint32_t> idx;
+  } hint;
 
   Impl(std::vector<geom::Vec2> p, std::vector<Polygon> g)
       : points(std::move(p)), polygons(std::move(g)), cloud{&points}, kd(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
@@ -88,6 +117,32 @@ FixedObstacleMap::FixedObstacleMap(std::vector<geom::Vec2> points, std::vector<P
   impl_->edges = detail::SegmentTree(std::move(edges));
   impl_->edges_and_points = detail::SegmentTree(std::move(all));
   impl_->box = impl_->edges_and_points.bounds();
+  build_hints();
+}
+
+void FixedObstacleMap::build_hints() {
+  auto& g = impl_->hint;
+  const auto& pts = impl_->points;
+  if (pts.size() < kHintMinPoints) return;
+  double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
+  for (const auto& p : pts) {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
+  const double h = std::max({x1 - x0, y1 - y0, 1.0}) / kHintCells;
+  g.x0 = x0, g.y0 = y0, g.inv_h = 1.0 / h;
+  g.nx = std::max(1, static_cast<int>(std::ceil((x1 - x0) / h)));
+  g.ny = std::max(1, static_cast<int>(std::ceil((y1 - y0) / h)));
+  g.idx.resize(static_cast<size_t>(g.nx) * static_cast<size_t>(g.ny));
+  for (int i = 0; i < g.nx; ++i)
+    for (int j = 0; j < g.ny; ++j) {
+      size_t k = 0;
+      double d2 = 0;
+      nanoflann::KNNResultSet<double, size_t> rs(1);
+      rs.init(&k, &d2);
+      const double q[2] = {x0 + (i + 0.5) * h, y0 + (j + 0.5) * h};
+      impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
+      g.idx[static_cast<size_t>(i) * static_cast<size_t>(g.ny) + static_cast<size_t>(j)] = static_cast<uint32_t>(k);
+    }
 }
 
 FixedObstacleMap::~FixedObstacleMap() = default;
@@ -100,13 +155,23 @@ BoxNE FixedObstacleMap::bounds() const { return impl_->box; }
 
 // The nearest point of a non-empty map: its index and squared distance.
 std::pair<size_t, double> FixedObstacleMap::nearest(geom::Vec2 p) const {
-  size_t idx = 0;
-  double d2 = 0;
-  nanoflann::KNNResultSet<double, size_t> rs(1);
-  rs.init(&idx, &d2);
   const double q[2] = {p.x, p.y};
+  const auto& g = impl_->hint;
+  if (g.idx.empty()) {
+    size_t idx = 0;
+    double d2 = 0;
+    nanoflann::KNNResultSet<double, size_t> rs(1);
+    rs.init(&idx, &d2);
+    impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
+    return {idx, d2};
+  }
+  // Clamped as doubles: a far query's cell index would not fit an int.
+  const auto i = static_cast<size_t>(std::clamp((p.x - g.x0) * g.inv_h, 0.0, g.nx - 1.0));
+  const auto j = static_cast<size_t>(std::clamp((p.y - g.y0) * g.inv_h, 0.0, g.ny - 1.0));
+  const size_t k = g.idx[i * static_cast<size_t>(g.ny) + j];
+  BoundedNearest rs{k, impl_->kd.distance.evalMetric(q, k, 2)};
   impl_->kd.findNeighbors(rs, q, nanoflann::SearchParams());
-  return {idx, d2};
+  return {rs.idx, rs.d2};
 }
 
 size_t FixedObstacleMap::nearest_index(geom::Vec2 p) const {

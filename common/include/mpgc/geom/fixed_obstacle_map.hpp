@@ -89,6 +89,9 @@ class FixedObstacleMap {
 
  private:
   std::pair<size_t, double> nearest(geom::Vec2 p) const;  // index and squared distance; needs points
+  static constexpr size_t kHintMinPoints = 64;  // fewer points: no starting-candidate grid
+  static constexpr double kHintCells = 128;     // [-] cells along the points' box's longer side
+  void build_hints();
   // No point closer than d to the query [qa, qb], looked for around its piece [a, b] (kd-tree
   // bisection).
   bool points_clear(geom::Vec2 qa, geom::Vec2 qb, geom::Vec2 a, geom::Vec2 b, double d, int depth) const;
