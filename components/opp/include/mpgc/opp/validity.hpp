@@ -63,6 +63,12 @@ class ValidityChecker {
     if (std::min({ca, cb, 0.5 * (ca + cb - norm(b - a))}) >= d + tol) return true;
     return fixed_->segment_clear(a, b, d);
   }
+  // True when fixed_clear(a, b, d, ca, cb) refuses every leg ending at b from any a with
+  // max(|a.x|, |a.y|) <= reach, whatever ca: b is closer than d (by more than the certificate's
+  // margin, whose bound reach gives).
+  bool fixed_blocks_end(Vec2 b, double cb, double d, double reach) const {
+    return cb < d - certificate_tol({reach, reach}, b, d);
+  }
   // The same answer when only a's clearance is known, ca = fixed_clearance(a) (the charted
   // region's edge included): every point of a short leg is within |ab| of a, so a leg shorter than
   // ca - d is clear without a search (an APF step, seed 003: most of apf-vo's time was these).
