@@ -11,6 +11,7 @@
 #include "mpgc/opp/registry.hpp"
 #include "mpgc/opp/validity.hpp"
 #include "mpgc/runtime/params.hpp"
+#include "problems.hpp"
 
 namespace opp = mpgc::opp;
 namespace geo = mpgc::geo;
@@ -142,16 +143,7 @@ TEST(ApfVo, DouglasPeuckerKeepsEndpointsAndDropsCollinearPoints) {
 }
 
 namespace {
-opp::Problem open_water(std::vector<opp::Target> targets) {
-  opp::Problem pb;
-  pb.start = {0, 0};
-  pb.heading = 0;
-  pb.speed = 5;
-  pb.goal.p = {30000, 0};
-  pb.bounds = {-20000, -20000, 40000, 20000};
-  pb.targets = std::move(targets);
-  return pb;
-}
+using opp::test::open_water;
 double dcpa_on(const opp::Problem& pb, double course, const opp::Target& t) {
   const opp::Vec2 v = pb.speed * dir_of(course);
   return mpgc::colreg::cpa({0, 0, v.x, v.y}, {t.p.x, t.p.y, t.v.x, t.v.y}).dcpa;

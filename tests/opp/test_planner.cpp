@@ -8,6 +8,7 @@
 #include "mpgc/opp/rrtstar.hpp"
 #include "mpgc/opp/scenarios.hpp"
 #include "mpgc/opp/validity.hpp"
+#include "problems.hpp"
 
 namespace opp = mpgc::opp;
 
@@ -556,17 +557,11 @@ TEST(PlannerFallback, FirstRelaxationKeepsThePinnedObligations) {
 // alone. (A relaxed plan kept from re-plan to re-plan turned 29 deg for two head-on ships: DNV 25.)
 TEST(PlannerFallback, RelaxedLevelsKeepRule8bForTheOwnShipsDuties) {
   opp::ConstraintParams c;
-  opp::Problem pb;
-  pb.start = {0, 0};
-  pb.heading = 0;
-  pb.speed = 5;
-  pb.goal.p = {30000, 0};
-  pb.bounds = {-20000, -20000, 40000, 20000};
-  pb.colreg = true;
   opp::Target t{1, {12000, 0}, {-5, 0}};
   t.pinned = {opp::Obligation::kHeadOn, 0.0, 0, kPi};
   t.pinned.speed0 = 5;
-  pb.targets = {t};
+  opp::Problem pb = opp::test::open_water({t});
+  pb.colreg = true;
   auto leg = [&](double deg, opp::ColregLevel level) {
     const opp::Vec2 b = 500.0 * opp::Vec2{std::cos(deg * kPi / 180), std::sin(deg * kPi / 180)};
     return opp::ValidityChecker(pb, c).moving(pb.start, 0.0, b, 500.0, level);
