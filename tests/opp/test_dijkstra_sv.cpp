@@ -232,6 +232,47 @@ TEST(DijkstraSv, ThePlanBeingSailedIsKeptWhileItIsClear) {
   EXPECT_EQ(side, -1) << "head-on ship passed starboard to starboard; " << fresh.reason;
 }
 
+TEST(DijkstraSv, APlanAtTheReducedSafeCpaIsKeptWhileItIsClearThere) {
+  // A head-on ship in a channel 4 km wide where it meets the own ship: no passing keeps the paper's
+  // 0.7 NM from both the ship and the shore, d_safety 926 m (Step 5) fits on either side. The
+  // first plan takes one side; the next re-plan, given the mirror (the other side, as clear by
+  // symmetry) as the plan being sailed, keeps it instead of drawing the first side again (DNV 34
+  // swung port and starboard in turn at the reduced safe CPA). Kept below the strictest attempt,
+  // it is not `kept` for the node, which still tries the lower speeds for the safe CPA.
+  Case k;
+  k.c.safety_distance = 926.0;
+  k.pb.colreg = false;
+  k.set_discs({{{4500, 5000}, 3000}, {{4500, -5000}, 3000}});
+  opp::Target tg;
+  tg.id = 7;
+  tg.p = {9000, 0};
+  tg.v = {-kU, 0};
+  k.pb.targets = {tg};
+  opp::DijkstraSv p;
+  p.set_tables(tables());
+  p.params().safe_cpa = kSafe;
+  const opp::Result first = solve(k, &p);
+  ASSERT_EQ(first.status, opp::Status::kOk) << first.reason;
+  ASSERT_TRUE(first.margin_reduced) << first.reason;
+  std::vector<opp::Vec2> mirror;
+  for (const auto& w : first.path) mirror.push_back({w.p.x, -w.p.y});
+  int side = 0;
+  closest(first, tg, &side);
+  const opp::Result next = p.solve(opp::Request{k.pb, k.c, opp::ObjectiveParams{}, opp::Budget{}, mirror});
+  ASSERT_EQ(next.status, opp::Status::kOk) << next.reason;
+  EXPECT_NE(next.reason.find("kept"), std::string::npos) << next.reason;
+  EXPECT_FALSE(next.kept);
+  EXPECT_TRUE(next.margin_reduced);
+  ASSERT_EQ(next.path.size(), mirror.size());
+  for (size_t i = 0; i < mirror.size(); ++i) {
+    EXPECT_EQ(next.path[i].p.x, mirror[i].x);
+    EXPECT_EQ(next.path[i].p.y, mirror[i].y);
+  }
+  int next_side = 0;
+  EXPECT_GE(closest(next, tg, &next_side), 926.0 - 1.0);
+  EXPECT_EQ(next_side, -side);
+}
+
 TEST(DijkstraSv, PortAlternativeWhenStarboardIsBlocked) {
   // Land across the route and far out to starboard: only the port grid passes it (§3).
   Case k;

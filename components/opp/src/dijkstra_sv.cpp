@@ -432,21 +432,25 @@ std::optional<Result> DijkstraSv::plan(const Problem& pb, const Attempt& a, cons
   }
 
   // Step 1 for the manoeuvre being sailed: while the previous plan (the waypoints still ahead)
-  // keeps the paper's safe CPA, it is kept. A fresh grid search at each re-plan would take
-  // whichever side is cheaper now, and side flips make a succession of small alterations instead
-  // of the one readily apparent one that rule 8(b) asks for. Not at a reduced safe CPA (Step 5):
-  // there the grid's best now is wanted, not the margin the last plan was left with.
-  if (a.strictest && a.keep && !rq.warm.empty()) {
+  // is clear under this attempt's safe CPA and COLREG level, it is kept. A fresh grid search at
+  // each re-plan would take whichever side is cheaper now, and side flips make a succession of
+  // small alterations instead of the one readily apparent one that rule 8(b) asks for (DNV 34:
+  // port and starboard in turn at the reduced safe CPA, every plan on a tie of costs). A stricter
+  // attempt's grid comes first, so a kept plan never stands in for a wider one found now; one
+  // kept below the strictest is not `kept` for the node, which still tries the lower speeds for
+  // the paper's safe CPA.
+  if (!rq.warm.empty()) {
     std::vector<Vec2> kept{pb.start};
     for (const Vec2& w : warm_tail(rq.warm, pb.start))
       if (norm(w - kept.back()) > 1.0) kept.push_back(w);
     if (kept.size() >= 2 && norm(kept.back() - pb.goal.p) < 1.0 &&
-        check.check_path(kept, lv == ColregLevel::kFull).empty()) {
-      Result r = finish(pb, kept, false, check, objective);
+        check.check_path(kept, lv).empty()) {
+      Result r = finish(pb, kept, !a.strictest, check, objective);
       r.reason = "previous plan clear at safe CPA " + fmt(c.safety_distance) + " m: kept (§3 Step 1, rule 8(b))";
       r.stats.edge_checks = tally.checks + kept.size() - 1;
       r.stats.nodes = static_cast<int>(kept.size());
-      r.stats.warm_started = r.kept = true;
+      r.stats.warm_started = true;
+      r.kept = a.strictest && a.keep;
       return r;
     }
   }

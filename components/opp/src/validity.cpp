@@ -71,6 +71,10 @@ ValidityChecker::Reject ValidityChecker::moving(Vec2 a, double ta, Vec2 b, doubl
 }
 
 std::string ValidityChecker::check_path(const std::vector<Vec2>& path, bool colreg) const {
+  return check_path(path, colreg ? ColregLevel::kFull : ColregLevel::kNone);
+}
+
+std::string ValidityChecker::check_path(const std::vector<Vec2>& path, ColregLevel level) const {
   if (path.size() < 2) return "path has fewer than 2 waypoints";
   Vec2 dir{std::cos(pb_.heading), std::sin(pb_.heading)};
   double len_acc = 0.0;
@@ -85,7 +89,7 @@ std::string ValidityChecker::check_path(const std::vector<Vec2>& path, bool colr
     // A path checked from its own first point: the escape distance is that point's.
     const double dfix = esc ? std::min(c_.safety_distance, fixed_clearance(a) * (1.0 - 1e-9)) : c_.safety_distance;
     if (!fixed_clear(a, b, dfix)) return leg + "closer than d_safety to a fixed obstacle or to unknown water beyond the chart";
-    const auto r = moving(a, len_acc / pb_.speed, b, len, colreg ? ColregLevel::kFull : ColregLevel::kNone, esc);
+    const auto r = moving(a, len_acc / pb_.speed, b, len, level, esc);
     if (r == kTarget) return leg + "closer than d_safety to a target (eq. 3-4)";
     if (r == kColreg) return leg + "not COLREG-compliant (§5)";
     dir = (1.0 / len) * seg;

@@ -87,6 +87,8 @@ class ValidityChecker {
   // Exact validity of a whole path at constant speed: every check above on every leg and the
   // arrival heading. Returns "" or the first violation.
   std::string check_path(const std::vector<Vec2>& path, bool colreg) const;
+  // The same at a COLREG level (a relaxed one: the duties pinned, rule 17(c) or not).
+  std::string check_path(const std::vector<Vec2>& path, ColregLevel level) const;
 
  private:
   // Only a margin far above the rounding of the distances decides by a certificate.
