@@ -344,7 +344,7 @@ class MarginPlanner final : public opp::Planner {
 
 // Seed 000 §2 with dijkstra-sv's safe CPA: a plan that gives the margin up makes the node try the
 // lower speeds, and one keeping it wins over an earlier arrival without it; a kept plan is re-asked
-// at its own speed, not replaced.
+// at its own speed, not replaced, unless a faster one keeps the margin now.
 TEST(OppNode, SpeedTriesPreferThePlannersOwnMarginAndKeepThePlanAtItsSpeed) {
   const opp::NodeParams p = declared();  // speeds 100, 75, 50, 25 %
   const opp::OwnReport own{{0, 0}, 0.0, 5.0, 0.0, 0.0};
@@ -363,6 +363,12 @@ TEST(OppNode, SpeedTriesPreferThePlannersOwnMarginAndKeepThePlanAtItsSpeed) {
   EXPECT_NE(again.result.reason.find("at 50 % speed"), std::string::npos) << again.result.reason;
   ASSERT_EQ(again.speeds.size(), 2u);
   EXPECT_DOUBLE_EQ(again.speeds.back(), 2.5);
+  // Sailed at 25 % while 50 % now keeps the margin: the ship works back up (DNV 46 held 25 % for
+  // 1000 s and ran out of time), to the fastest such speed.
+  const opp::NodePlan raised = opp::plan_node(planner, p, s, p.objective, {}, warm, {}, 0.25);
+  EXPECT_DOUBLE_EQ(raised.speed_fraction, 0.5);
+  EXPECT_FALSE(raised.result.margin_reduced);
+  EXPECT_NE(raised.result.reason.find("speed raised to 50 % from 25 %"), std::string::npos) << raised.result.reason;
 }
 
 // The lower speeds are solved at once on their own threads: the plan is still a function of the
