@@ -5,6 +5,7 @@
 #include <exception>
 #include <future>
 #include <limits>
+#include <optional>
 
 #include "mpgc/geo/angles.hpp"
 #include "mpgc/opp/registry.hpp"
@@ -376,20 +377,41 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
   const bool want = s.problem.colreg && out.result.status != Status::kInvalidInput &&
                     (out.result.status != Status::kOk || detour || out.result.margin_reduced);
   auto fraction = [&](int k) { return 1.0 - k * (1.0 - p.min_speed_fraction) / p.speed_steps; };
+  // The lower speeds are independent requests, each with its own seed-determined search: solved
+  // at once on their own threads (a planner's solve is safe to run concurrently, planner.hpp),
+  // each at most once, and judged in order of k below, so the plan is the same as one after the
+  // other, in less wall time (issue 20: the speed tries were half of a lockstep run's planning).
+  std::vector<std::future<Result>> tries(static_cast<std::size_t>(want ? p.speed_steps : 0));
+  std::vector<std::optional<Result>> solved(tries.size());
+  auto launch = [&](int k) {
+    auto& t = tries[static_cast<std::size_t>(k - 1)];
+    if (t.valid() || solved[static_cast<std::size_t>(k - 1)]) return;
+    t = std::async(std::launch::async, [&, k] {
+      Setup slow = s;
+      slow.problem.speed = fraction(k) * s.problem.speed;
+      return solve_with_hold(planner, slow, objective, hold, {}, hooks);
+    });
+  };
+  auto tried = [&](int k) -> Result& {
+    auto& r = solved[static_cast<std::size_t>(k - 1)];
+    if (!r) r = tries[static_cast<std::size_t>(k - 1)].get();
+    return *r;
+  };
   // A slower plan being sailed and still valid at its speed is carried on when the planned speed
   // would need one too (else the ship resumes it); but a speed between, at which a plan is now
   // compliant with the margin and no detour, comes first, the fastest: the ship works back up as
   // the encounter allows (DNV 46 kept 0.7 NM from an overtaken ship at 25 % for 1000 s, then ran
   // out of time).
   if (want && planner.keeps_plan() && !warm.empty() && warm_fraction < 1.0) {
-    for (int k = 1; k <= p.speed_steps && fraction(k) > warm_fraction + 1e-9; ++k) {
-      Setup faster = s;
-      faster.problem.speed = fraction(k) * s.problem.speed;
-      Result r = solve_with_hold(planner, faster, objective, hold, {}, hooks);
+    int faster = 0;
+    while (faster < p.speed_steps && fraction(faster + 1) > warm_fraction + 1e-9) launch(++faster);
+    for (int k = 1; k <= faster; ++k) {
+      const Result& r = tried(k);
       if (r.status != Status::kOk || r.margin_reduced || length(r) > p.speed_detour * straight) continue;
-      r.reason = "speed raised to " + fmt(100.0 * fraction(k)) + " % from " + fmt(100.0 * warm_fraction) + " %: " + r.reason;
-      out.result = std::move(r);
-      out.speeds = speeds_of(out.result, faster.problem.speed);
+      out.result = r;
+      out.result.reason = "speed raised to " + fmt(100.0 * fraction(k)) + " % from " + fmt(100.0 * warm_fraction) +
+                          " %: " + r.reason;
+      out.speeds = speeds_of(out.result, fraction(k) * s.problem.speed);
       out.speed_fraction = fraction(k);
       return out;
     }
@@ -417,20 +439,10 @@ NodePlan plan_node(Planner& planner, const NodeParams& p, const Setup& s, const 
     return resumed_arrival(r, s.problem.targets, s.constraints.colreg_distance, s.constraints.colreg.risk_cpa,
                            s.problem.speed);
   };
-  // The lower speeds are independent requests, each with its own seed-determined search: solved
-  // at once on their own threads (a planner's solve is safe to run concurrently, planner.hpp) and
-  // judged in order of k below, so the plan is the same as one after the other, in less wall time
-  // (issue 20: the speed tries were half of a lockstep run's planning).
-  std::vector<std::future<Result>> tries;
-  for (int k = 1; want && k <= p.speed_steps; ++k)
-    tries.push_back(std::async(std::launch::async, [&, k] {
-      Setup slow = s;
-      slow.problem.speed = fraction(k) * s.problem.speed;
-      return solve_with_hold(planner, slow, objective, hold, {}, hooks);
-    }));
+  for (int k = 1; k <= static_cast<int>(tries.size()); ++k) launch(k);
   for (int k = 1; k <= static_cast<int>(tries.size()); ++k) {
     const double f = fraction(k);
-    Result r = tries[static_cast<size_t>(k - 1)].get();
+    Result& r = tried(k);
     const double time = r.status == Status::kOk ? arrival(r) : std::numeric_limits<double>::infinity();
     // A plan that keeps the planner's own margin beats one that gave it up, whatever the arrival.
     const bool wider = r.status == Status::kOk && !r.margin_reduced && out.result.margin_reduced;
