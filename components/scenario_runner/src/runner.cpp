@@ -212,12 +212,16 @@ std::string launch_file(const Scenario& s, const std::string& world_path, const 
   set["recorder"]["record.sim_time"] = "true";
   set["recorder"]["map.safety_distance"] = std::to_string(s.safety_distance);
   if (o.view_port > 0) set["recorder"]["live.port"] = std::to_string(o.view_port);
-  if (!o.secure.empty()) {  // a secured bus grants sim/faults to nobody (deploy/security/access.yaml)
-    std::string granted;
-    for (const auto& t : topics::kAll)
-      if (std::string(t.name) != topics::kFaults) granted += (granted.empty() ? "" : ",") + std::string(t.name);
-    set["recorder"]["record.topics"] = granted;
+  // Every topic but the lockstep's acknowledgements: the barrier's plumbing, five a step, half of a
+  // run's samples; reading them sent every participant's acks to a second process. A secured bus
+  // grants sim/faults to nobody (deploy/security/access.yaml).
+  std::string recorded;
+  for (const auto& t : topics::kAll) {
+    const std::string name = t.name;
+    if (name == topics::kStepAck || (!o.secure.empty() && name == topics::kFaults)) continue;
+    recorded += (recorded.empty() ? "" : ",") + name;
   }
+  set["recorder"]["record.topics"] = recorded;
   for (const auto& [comp, kv] : s.params)
     for (const auto& [k, v] : kv) set[comp][k] = v;
   // --planner: the same scenario with another planner behind the interface (issue 18).
