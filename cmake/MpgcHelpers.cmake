@@ -5,6 +5,16 @@ function(mpgc_target_defaults target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wno-missing-field-initializers)
 endfunction()
 
+# A benchmark no test runs (./mpgc bench NAME): left out of the sanitizer build's default target,
+# where nothing runs it and its compile is minutes of CI (cmake --build build-asan --target NAME
+# builds it there).
+function(mpgc_benchmark_defaults target)
+  mpgc_target_defaults(${target})
+  if(MPGC_SANITIZE)
+    set_target_properties(${target} PROPERTIES EXCLUDE_FROM_ALL ON)
+  endif()
+endfunction()
+
 # Adds every immediate subfolder of `dir` that has a CMakeLists.txt, so a new component or test
 # folder needs no edit elsewhere.
 function(mpgc_add_subdirectories dir)
