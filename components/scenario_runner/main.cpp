@@ -474,8 +474,8 @@ int main(int argc, char** argv) {
   app.add_option("--realtime-factor", o.realtime_factor, "watch it: simulated seconds per wall second (0 = lockstep, as fast as possible)")
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--quiet", o.quiet, "no progress lines");
-  bool no_record = false;
-  app.add_flag("--no-record", no_record, "no recording of the bus (<run>/run.mcap): one process fewer, for runs judged by their metrics only");
+  app.add_flag("--no-record{false}", o.record,
+               "no recording of the bus (<run>/run.mcap): one process fewer, for runs judged by their metrics only");
   app.add_option("--planner", o.planner, "the planner behind opp's planning interface (sets opp plan.planner)")
       ->check(CLI::IsMember(mpgc::opp::planner_names()));
   std::string baseline_file;
@@ -511,7 +511,6 @@ int main(int argc, char** argv) {
                  "this folder (deploy/security/make-pki.sh DIR)");
   CLI11_PARSE(app, argc, argv);
   try {
-    o.record = !no_record;
     sr::resolve_options(o, cl);
     if (o.containers && dp::run_command({"podman", "image", "exists", o.image}) != 0)
       throw std::invalid_argument("--containers: no image " + o.image + " (make it with deploy/container/build-image.sh)");
