@@ -110,6 +110,28 @@ TEST(Runner, OptionsNeedHostsForNetworkFlagsAndSetTheDefaults) {
   EXPECT_THROW(sr::resolve_options(c, {}), std::invalid_argument);
 }
 
+// The recorder takes every topic but the lockstep's acknowledgements (sim/faults too, except on a
+// secured bus, which grants it to nobody); --no-record (record = false) launches no recorder.
+TEST(Runner, TheRecorderTakesEveryTopicButTheAcksAndNoRecordLaunchesNone) {
+  auto topics = [](const sr::RunOptions& o) {
+    return components(sr::launch_file(scenario(), "/run/x/world.yaml", o, 3, {}, {}))["recorder"]["set"]["record.topics"]
+        .as<std::string>();
+  };
+  const std::string open = "," + topics(sr::RunOptions{}) + ",";
+  EXPECT_EQ(open.find(",clock/ack,"), std::string::npos);
+  EXPECT_NE(open.find(",clock,"), std::string::npos);
+  EXPECT_NE(open.find(",nav/own_state,"), std::string::npos);
+  EXPECT_NE(open.find(",sim/faults,"), std::string::npos);
+  sr::RunOptions secure;
+  secure.secure = "/pki";
+  EXPECT_EQ(("," + topics(secure) + ",").find(",sim/faults,"), std::string::npos);
+  sr::RunOptions none;
+  none.record = false;
+  const auto c = components(sr::launch_file(scenario(), "/run/x/world.yaml", none, 3, {}, {}));
+  EXPECT_EQ(c.size(), 5u);
+  EXPECT_FALSE(c["recorder"]);
+}
+
 // --view: the recorder serves the live view on loopback, at a real-time factor unless one is given.
 TEST(Runner, ViewServesTheLiveViewFromTheRecorderAtARealtimeFactor) {
   sr::RunOptions o;
