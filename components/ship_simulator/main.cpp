@@ -71,8 +71,10 @@ int main(int argc, char** argv) {
       sim::OutputSchedule outputs;
       sim::LockstepPacer pacer;
       msg::Clock last_clock{};
+      uint64_t steps_without_clock = 0;  // lockstep: steps since the last Clock
+      bool clock_out = false;            // the last step's Clock was written
     };
-    auto st = std::make_shared<State>(State{{}, 0, false, false, 0, sim::OutputSchedule(p), sim::LockstepPacer(p), {}});
+    auto st = std::make_shared<State>(State{{}, 0, false, false, 0, sim::OutputSchedule(p), sim::LockstepPacer(p), {}, 0, false});
     st->cmd = world->initial_command();
     std::shared_ptr<sim::StepLog> journal;
     if (!p.journal.empty()) {
@@ -197,7 +199,18 @@ int main(int argc, char** argv) {
         for (const auto& tt : world->target_truth()) g.targets.push_back(to_msg(tt));
         truth_w.write(g);
       }
-      st->last_clock = msg::Clock{t, world->step_index(), world->step_ns(), lockstep && !barrier->empty()};
+      // In lockstep a step at which no participant's timer is due goes without a Clock: the
+      // participants deliver its samples at the next one (Component::on_clock). Not in HIL, where
+      // the bridge, on this clock but no participant, turns the wires into topics at every step.
+      const bool barrier_step = lockstep && !barrier->empty();
+      st->clock_out = !barrier_step || p.hil || p.finished(t) ||
+                      sim::clock_due(t, world->step_ns(), barrier->due_ns(), st->steps_without_clock);
+      if (!st->clock_out) {
+        ++st->steps_without_clock;
+        return;
+      }
+      st->steps_without_clock = 0;
+      st->last_clock = msg::Clock{t, world->step_index(), world->step_ns(), barrier_step};
       barrier->begin(world->step_index());
       clock_w.write(st->last_clock);
       st->pacer.stepped(c.now_ns());
@@ -224,6 +237,13 @@ int main(int argc, char** argv) {
       c.count("steps");
       publish_step();
     };
+    // Lockstep, once the barrier is complete: the participants wrote their commands before their
+    // acks, so read them all, then step up to the next step with a Clock.
+    auto run_to_clock = [&, st, advance] {
+      c.poll();
+      do advance();
+      while (!st->stopped && !st->clock_out);
+    };
 
     if (!p.hil) c.subscribe<msg::ActuatorCommand>(
         topics::kActuators, dds::QosProfile::command(16),
@@ -247,8 +267,8 @@ int main(int argc, char** argv) {
         while (!st->stopped && c.now_ns() < until);
       });
     } else {
-      auto& acks = c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, advance](const msg::StepAck& a) {
-        const auto r = barrier->ack(a.component, a.step);
+      auto& acks = c.subscribe<msg::StepAck>(topics::kStepAck, dds::QosProfile::command(16), [&, st, barrier, run_to_clock](const msg::StepAck& a) {
+        const auto r = barrier->ack(a.component, a.step, a.next_due_ns);
         if (r == sim::LockstepBarrier::Ack::Unknown) c.count("lockstep.unknown_acks");
         if (r == sim::LockstepBarrier::Ack::Readmitted) {
           c.log().warn("lockstep: {} is back (ack of step {}), waiting for it again", a.component, a.step);
@@ -256,22 +276,17 @@ int main(int argc, char** argv) {
           if (barrier->absent().empty()) c.set_problem("lockstep", "");
         }
         if ((r != sim::LockstepBarrier::Ack::Counted && r != sim::LockstepBarrier::Ack::Readmitted) || !barrier->complete()) return;
-        // The participants wrote their commands before their acks: read them all before stepping.
-        c.poll();
-        advance();
+        run_to_clock();
       });
       // A participant that died (its ack writer's liveliness is lost) or hangs: go on without it,
       // so the ship keeps being simulated and its watchdogs see the silence; it rejoins on restart.
-      auto drop_missing = [&, st, barrier, advance](const std::string& why) {
+      auto drop_missing = [&, st, barrier, run_to_clock](const std::string& why) {
         const auto dropped = barrier->drop_missing();
         for (size_t i = 0; i < dropped.size(); ++i) c.count("lockstep.dropped");
         if (dropped.empty()) return;
         c.log().warn("lockstep: step {} goes on without [{}] ({})", st->last_clock.step, sim::join_names(dropped), why);
         c.set_problem("lockstep", sim::lockstep_problem(*barrier, why));
-        if (barrier->complete()) {
-          c.poll();
-          advance();
-        }
+        if (barrier->complete()) run_to_clock();
       };
       // Start once every participant is up (its ack writer is alive) and discovery has settled, so
       // all of them receive step 0's data: a run must not depend on who was discovered first.

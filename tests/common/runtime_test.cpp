@@ -10,6 +10,7 @@
 #include <chrono>
 #include <limits>
 #include <thread>
+#include <tuple>
 
 #include <spdlog/sinks/null_sink.h>
 
@@ -181,6 +182,64 @@ TEST(Runtime, OnSimulatedTimeAPeersSampleOfAStepCountsFromTheNextTick) {
     EXPECT_EQ(seen[k].first, k) << "step " << k;
     EXPECT_EQ(seen[k].second, k + 1) << "step " << k;
   }
+}
+
+// Lockstep with left-out Clocks: the steps between two Clocks are ticks of their own (one per
+// step_ns), each sample delivered on the clock it would have had with a Clock at every step, a timer
+// due at such a step fires there, and every ack says when the next timer is due.
+TEST(Runtime, TheStepsWhoseClockWasLeftOutAreTicksOfTheirOwn) {
+  rt::Component c("sim_node", runtime("sim"), quiet());
+  std::vector<std::tuple<int64_t, int64_t, uint64_t>> sim_seen, peer_seen;  // (now, stamp, value)
+  std::vector<int64_t> timer_at;
+  c.subscribe<msg::ComponentHealth>("test/sim", dds::QosProfile::state(), [&](const msg::ComponentHealth& h) {
+    sim_seen.emplace_back(c.now_ns(), h.header.stamp_ns, h.rejected_inputs);
+  });
+  c.subscribe<msg::ComponentHealth>("test/peer", dds::QosProfile::state(), [&](const msg::ComponentHealth& h) {
+    peer_seen.emplace_back(c.now_ns(), h.header.stamp_ns, h.rejected_inputs);
+  });
+  c.every(0.3, [&] { timer_at.push_back(c.now_ns()); });
+
+  dds::Participant p(c.participant().domain_id());
+  dds::Topic<msg::Clock> tc(p, mpgc::topics::kClock);
+  dds::Topic<msg::StepAck> ta(p, mpgc::topics::kStepAck);
+  dds::Topic<msg::ComponentHealth> tp(p, "test/peer"), ts(p, "test/sim");
+  dds::Writer<msg::Clock> clock(p, tc, dds::QosProfile::command(16));
+  const auto q = dds::QosProfile::state().deterministic();
+  dds::Writer<msg::ComponentHealth> peer(p, tp, q), sim(p, ts, q);
+  dds::Reader<msg::StepAck> acks(p, ta, dds::QosProfile::command(16));
+  Spinner spin(c);
+  ASSERT_TRUE(wait_for([&] { return clock.matched() && peer.matched() && sim.matched() && acks.matched(); }, 10.0));
+  auto sample = [](int64_t t, const char* source, uint64_t v) {
+    msg::ComponentHealth h;
+    h.header = {t, source, 0};
+    h.rejected_inputs = v;
+    return h;
+  };
+  constexpr int64_t kStep = 100'000'000;
+  std::vector<int64_t> due;
+  for (uint64_t step = 0; step <= 10; ++step) {
+    const int64_t t = static_cast<int64_t>(step) * kStep;
+    sim.write(sample(t, "ship_simulator", step));
+    if (step == 2) peer.write(sample(t, "peer", 2));  // another writer's: belongs to the next step
+    if (step % 5 != 0) continue;  // steps 1-4 and 6-9 go without a Clock
+    clock.write(msg::Clock{t, step, kStep, true});
+    bool acked = false;
+    ASSERT_TRUE(wait_for([&] {
+      for (auto& a : acks.take())
+        if (a.value.step == step) acked = true, due.push_back(a.value.next_due_ns);
+      return acked;
+    }, 10.0));
+  }
+  spin.stop();
+  ASSERT_EQ(sim_seen.size(), 11u);
+  for (uint64_t k = 0; k <= 10; ++k) {
+    EXPECT_EQ(std::get<0>(sim_seen[k]), static_cast<int64_t>(k) * kStep) << "step " << k;
+    EXPECT_EQ(std::get<2>(sim_seen[k]), k);
+  }
+  ASSERT_EQ(peer_seen.size(), 1u);
+  EXPECT_EQ(std::get<0>(peer_seen[0]), 3 * kStep);
+  EXPECT_EQ(timer_at, (std::vector<int64_t>{0, 3 * kStep, 6 * kStep, 9 * kStep}));
+  EXPECT_EQ(due, (std::vector<int64_t>{3 * kStep, 6 * kStep, 12 * kStep}));
 }
 
 TEST(Runtime, StampDifferencesSaturateInsteadOfOverflowing) {

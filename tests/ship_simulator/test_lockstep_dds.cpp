@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <thread>
 
 #include <spdlog/sinks/null_sink.h>
@@ -81,16 +82,45 @@ using mpgc::testing::spawn;
 using mpgc::testing::wait_child;
 }  // namespace
 
+TEST(LockstepBarrier, TheEarliestTimerOfThePresentParticipantsSetsTheNextClock) {
+  sim::LockstepBarrier b({"guidance", "opp"});
+  EXPECT_EQ(b.due_ns(), 0);  // nobody has said yet
+  b.begin(0);
+  b.ack("guidance", 0, 500);
+  EXPECT_EQ(b.due_ns(), 0);  // opp has not
+  b.ack("opp", 0, 300);
+  EXPECT_EQ(b.due_ns(), 300);
+  b.ack("opp", 0, -7);  // a negative one: at once
+  EXPECT_EQ(b.due_ns(), 0);
+  b.ack("opp", 0, std::numeric_limits<int64_t>::max());  // no timer at all
+  EXPECT_EQ(b.due_ns(), 500);
+  b.drop("guidance");  // an absent one is not waited for
+  EXPECT_EQ(b.due_ns(), std::numeric_limits<int64_t>::max());
+  // A Clock at the due step and the one before it, or after kMaxStepsWithoutClock without one.
+  EXPECT_FALSE(sim::clock_due(300, 100, 500, 0));
+  EXPECT_TRUE(sim::clock_due(400, 100, 500, 0));
+  EXPECT_TRUE(sim::clock_due(500, 100, 500, 0));
+  EXPECT_TRUE(sim::clock_due(700, 100, 500, 0));
+  EXPECT_FALSE(sim::clock_due(100, 100, std::numeric_limits<int64_t>::max(), sim::kMaxStepsWithoutClock - 1));
+  EXPECT_TRUE(sim::clock_due(100, 100, std::numeric_limits<int64_t>::max(), sim::kMaxStepsWithoutClock));
+}
+
+namespace {
+// A world of one target for the lockstep runs; returns its file.
+std::string lockstep_world(int domain) {
+  const std::string world = ::testing::TempDir() + "/lockstep_world_" + std::to_string(domain) + ".yaml";
+  std::ofstream w(world);
+  w << "origin: {lat_deg: 38.9, lon_deg: -76.4}\nseed: 5\n"
+    << "own_ship: {model: mmg, data_dir: \"" << mpgc::testing::shared_data("ship_models")
+    << "\", heading_deg: 0, speed_kn: 15}\n"
+    << "targets: [{mmsi: 257000001, x_m: 2000, y_m: 500, course_deg: 180, speed_kn: 10}]\n";
+  return world;
+}
+}  // namespace
+
 TEST(LockstepDds, SimulatorNeverRunsAheadOfTheParticipant) {
   const int domain = mpgc::testing::unique_domain();
-  const std::string world = ::testing::TempDir() + "/lockstep_world_" + std::to_string(domain) + ".yaml";
-  {
-    std::ofstream w(world);
-    w << "origin: {lat_deg: 38.9, lon_deg: -76.4}\nseed: 5\n"
-      << "own_ship: {model: mmg, data_dir: \"" << mpgc::testing::shared_data("ship_models")
-      << "\", heading_deg: 0, speed_kn: 15}\n"
-      << "targets: [{mmsi: 257000001, x_m: 2000, y_m: 500, course_deg: 180, speed_kn: 10}]\n";
-  }
+  const std::string world = lockstep_world(domain);
   rt::RuntimeParams rp;
   rp.domain = domain;
   rp.clock = "sim";
@@ -148,6 +178,47 @@ TEST(LockstepDds, SimulatorNeverRunsAheadOfTheParticipant) {
   EXPECT_NEAR(last_rudder, mpgc::geo::deg2rad(35.0), 1e-6);  // 57 deg saturated to the limit and held
   EXPECT_GT(last_x, 200.0);
   EXPECT_EQ(sim_rejected, 1u);  // only the NaN order
+}
+
+// A participant whose timer is due every 0.5 s: the simulator publishes the Clock of the due steps
+// and of the steps just before them only, and the participant still sees every step's own state on
+// that step's clock and acts on each due step exactly once.
+TEST(LockstepDds, StepsAtWhichNoTimerIsDueGoWithoutAClock) {
+  const int domain = mpgc::testing::unique_domain();
+  const std::string world = lockstep_world(domain);
+  rt::RuntimeParams rp;
+  rp.domain = domain;
+  rp.clock = "sim";
+  auto log = std::make_shared<spdlog::logger>("peer", std::make_shared<spdlog::sinks::null_sink_mt>());
+  rt::Component peer("peer", rp, log);
+  std::vector<uint64_t> clocks;
+  peer.subscribe<msg::Clock>(topics::kClock, dds::QosProfile::command(16),
+                             [&](const msg::Clock& c) { clocks.push_back(c.step); });
+  std::vector<std::pair<int64_t, int64_t>> nav;  // (now, stamp)
+  peer.subscribe<msg::NavState>(topics::kOwnState, dds::QosProfile::state(),
+                                [&](const msg::NavState& n) { nav.emplace_back(peer.now_ns(), n.header.stamp_ns); });
+  std::vector<int64_t> ticks;
+  peer.every(0.5, [&] { ticks.push_back(peer.now_ns()); });
+  std::thread spinner([&] { peer.spin(); });
+  const pid_t pid = spawn({mpgc::testing::bin_dir() + "/mpgc_ship_simulator", "--domain", std::to_string(domain),
+                           "--log-level", "warn", "--set", "world.file=" + world, "--set", "time.mode=lockstep",
+                           "--set", "lockstep.participants=peer", "--set", "time.duration=30"});
+  ASSERT_GT(pid, 0);
+  const int rc = wait_child(pid, 120.0);
+  peer.stop();
+  spinner.join();
+
+  EXPECT_EQ(rc, 0);
+  std::vector<uint64_t> expected{0};
+  for (uint64_t k = 4; k <= 300; k += 5) expected.insert(expected.end(), {k, k + 1});
+  EXPECT_EQ(clocks, expected);
+  ASSERT_EQ(nav.size(), 301u);  // every step, on its own clock
+  for (std::size_t i = 0; i < nav.size(); ++i) {
+    EXPECT_EQ(nav[i].second, static_cast<int64_t>(i) * 100'000'000);
+    EXPECT_EQ(nav[i].first, nav[i].second);
+  }
+  ASSERT_EQ(ticks.size(), 61u);
+  for (std::size_t i = 0; i < ticks.size(); ++i) EXPECT_EQ(ticks[i], static_cast<int64_t>(i) * 500'000'000);
 }
 
 namespace {

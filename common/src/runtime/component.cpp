@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_sinks.h>
@@ -24,6 +25,8 @@ extern "C" void on_signal(int) {
 }
 
 constexpr int64_t kRejectLogInterval_ns = 5'000'000'000;  // one warn line per reason per 5 s
+// A Clock further than this many steps from the last is a jump (a resumed run), not left-out steps.
+constexpr int64_t kMaxSkippedSteps = 1000;
 
 }  // namespace
 
@@ -174,16 +177,34 @@ void Component::publish_health() {
 }
 
 void Component::on_clock(const msg::Clock& c) {
-  if (!sim_clock_->advance_to(c.time_ns)) {
+  const bool started = sim_clock_->started();
+  const int64_t last_ns = sim_clock_->now_ns();
+  if (started && c.time_ns < last_ns) {
     reject(topics::kClock, "time went backwards to " + std::to_string(c.time_ns) + " ns");
     return;
   }
   // Everything that arrived before this Clock is in the readers now; hand over what belongs here.
   for (auto& s : subs_) s->take(*this);
-  const Gate gate = Gate::tick(c.time_ns, rp_.clock_publisher);
+  // The steps whose Clock the simulator left out (no timer was due) are ticks too, one per step_ns,
+  // so every sample is delivered on the clock it would have had with a Clock at every step.
+  if (started && c.step_ns > 0 && c.time_ns > last_ns && (c.time_ns - last_ns) % c.step_ns == 0 &&
+      (c.time_ns - last_ns) / c.step_ns <= kMaxSkippedSteps)
+    for (int64_t t = last_ns + c.step_ns; t < c.time_ns; t += c.step_ns) tick(t, c.time_ns);
+  tick(c.time_ns, c.time_ns);
+  if (c.lockstep && rp_.lockstep_ack) ack_writer_->write(msg::StepAck{name_, c.step, next_due_ns()});
+}
+
+void Component::tick(int64_t t_ns, int64_t clock_ns) {
+  sim_clock_->advance_to(t_ns);
+  const Gate gate = Gate::tick(t_ns, clock_ns, rp_.clock_publisher);
   for (auto& s : subs_) s->deliver(gate);
   fire_due_timers();
-  if (c.lockstep && rp_.lockstep_ack) ack_writer_->write(msg::StepAck{name_, c.step});
+}
+
+int64_t Component::next_due_ns() const {
+  int64_t due = std::numeric_limits<int64_t>::max();
+  for (const auto& t : timers_) due = std::min(due, t.started ? t.next_ns : 0);
+  return due;
 }
 
 void Component::fire_due_timers() {

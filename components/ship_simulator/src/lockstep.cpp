@@ -1,5 +1,7 @@
 #include "mpgc/ship_simulator/lockstep.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace mpgc::ship_simulator {
@@ -16,8 +18,9 @@ void LockstepBarrier::begin(uint64_t step) {
   acked_.clear();
 }
 
-LockstepBarrier::Ack LockstepBarrier::ack(const std::string& component, uint64_t step) {
+LockstepBarrier::Ack LockstepBarrier::ack(const std::string& component, uint64_t step, int64_t next_due_ns) {
   if (!participants_.count(component)) return Ack::Unknown;
+  due_ns_[component] = std::max<int64_t>(next_due_ns, 0);  // a negative one: at once
   if (absent_.erase(component) > 0) {
     if (step == step_) acked_.insert(component);
     else acked_.erase(component);  // an old step's ack: it owes the current one
@@ -44,6 +47,16 @@ bool LockstepBarrier::complete() const {
   for (const auto& p : participants_)
     if (!absent_.count(p) && !acked_.count(p)) return false;
   return true;
+}
+
+int64_t LockstepBarrier::due_ns() const {
+  int64_t due = std::numeric_limits<int64_t>::max();
+  for (const auto& p : participants_) {
+    if (absent_.count(p)) continue;
+    const auto it = due_ns_.find(p);
+    due = std::min(due, it == due_ns_.end() ? 0 : it->second);
+  }
+  return due;
 }
 
 std::vector<std::string> LockstepBarrier::missing() const {

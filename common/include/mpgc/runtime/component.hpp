@@ -7,6 +7,11 @@
 // before T, and the samples stamped T by the clock's publisher (the simulator writes a step's
 // sensor data before its Clock). Samples other components stamped T, in the same step, wait for the
 // next tick: whether they arrived before this component saw the Clock is a matter of timing.
+// In lockstep each acknowledgement says when this component's next timer is due, and the simulator
+// leaves out the Clock of steps before it (all but the one just before, so what a component wrote
+// from an input callback on those steps is in before anyone's timer acts on it); the executor
+// replays the left-out steps as ticks of their own at the next Clock, the same callbacks on the
+// same clock.
 // Samples stamped on another clock (the wall clock: rt::wall_clock_stamp) are delivered at once.
 // State topics are reliable on simulated time (QosProfile::deterministic) so no sample is lost.
 //
@@ -141,14 +146,21 @@ class Component {
   // arrival, simulated time) only those stamped on another clock.
   struct Gate {
     enum class Mode { All, Tick, Arrival } mode = Mode::All;
-    int64_t tick_ns = 0;  // [ns] time of the tick
+    int64_t tick_ns = 0;   // [ns] time of the tick
+    int64_t clock_ns = 0;  // [ns] time of the Clock being handled: a left-out step's tick is earlier
     const std::string* clock_publisher = nullptr;
-    static Gate tick(int64_t t_ns, const std::string& publisher) { return {Mode::Tick, t_ns, &publisher}; }
-    static Gate arrival() { return {Mode::Arrival, 0, nullptr}; }
+    static Gate tick(int64_t t_ns, int64_t clock_ns, const std::string& publisher) {
+      return {Mode::Tick, t_ns, clock_ns, &publisher};
+    }
+    static Gate arrival() { return {Mode::Arrival, 0, 0, nullptr}; }
     bool passes() const { return mode != Mode::Arrival; }  // a sample without a header
     bool passes(const msg::Header& h) const {
       if (mode == Mode::All || wall_clock_stamp(h.stamp_ns)) return true;
-      return mode == Mode::Tick && (h.stamp_ns != tick_ns || h.source == *clock_publisher);
+      if (mode != Mode::Tick) return false;
+      if (h.stamp_ns == tick_ns) return h.source == *clock_publisher;
+      // What belongs to a later tick of this Clock waits for it; a stamp beyond the Clock (a
+      // peer's clock ahead, or a bad one) is handed over at once, to be judged by the callback.
+      return h.stamp_ns < tick_ns || h.stamp_ns > clock_ns;
     }
   };
   template <class T, class = void>
@@ -222,6 +234,8 @@ class Component {
   void attach(dds_entity_t reader);
   void watch_liveliness(dds_entity_t reader, std::function<void(int32_t)> cb);
   void on_clock(const msg::Clock& c);
+  void tick(int64_t t_ns, int64_t clock_ns);  // simulated time: deliver tick t's samples, fire due timers
+  int64_t next_due_ns() const;  // [ns] the earliest due timer (0 before the first tick)
   void fire_due_timers();
   void publish_health();
 
