@@ -65,6 +65,29 @@ class Spinner {
   std::thread t_;
 };
 
+
+// The other side of a simulated-time component: the Clock's publisher, two data writers on
+// test/peer and test/sim (reliable state, as on simulated time) and the acks' reader.
+struct ClockBus {
+  explicit ClockBus(int domain)
+      : p(domain), tc(p, mpgc::topics::kClock), ta(p, mpgc::topics::kStepAck), tp(p, "test/peer"), ts(p, "test/sim"),
+        clock(p, tc, dds::QosProfile::command(16)), peer(p, tp, dds::QosProfile::state().deterministic()),
+        sim(p, ts, dds::QosProfile::state().deterministic()), acks(p, ta, dds::QosProfile::command(16)) {}
+  bool matched() { return clock.matched() && peer.matched() && sim.matched() && acks.matched(); }
+  static msg::ComponentHealth sample(int64_t t, const char* source, uint64_t v) {
+    msg::ComponentHealth h;
+    h.header = {t, source, 0};
+    h.rejected_inputs = v;
+    return h;
+  }
+  dds::Participant p;
+  dds::Topic<msg::Clock> tc;
+  dds::Topic<msg::StepAck> ta;
+  dds::Topic<msg::ComponentHealth> tp, ts;
+  dds::Writer<msg::Clock> clock;
+  dds::Writer<msg::ComponentHealth> peer, sim;
+  dds::Reader<msg::StepAck> acks;
+};
 }  // namespace
 
 TEST(Runtime, SimTimeTimersFireOnClockAndAckLockstep) {
@@ -146,22 +169,11 @@ TEST(Runtime, OnSimulatedTimeAPeersSampleOfAStepCountsFromTheNextTick) {
                                     [&](const msg::ComponentHealth& h) { sim_v = h.rejected_inputs; });
   c.every(0.1, [&] { seen.emplace_back(peer_v, sim_v); });
 
-  dds::Participant p(c.participant().domain_id());
-  dds::Topic<msg::Clock> tc(p, mpgc::topics::kClock);
-  dds::Topic<msg::StepAck> ta(p, mpgc::topics::kStepAck);
-  dds::Topic<msg::ComponentHealth> tp(p, "test/peer"), ts(p, "test/sim");
-  dds::Writer<msg::Clock> clock(p, tc, dds::QosProfile::command(16));
-  const auto q = dds::QosProfile::state().deterministic();
-  dds::Writer<msg::ComponentHealth> peer(p, tp, q), sim(p, ts, q);
-  dds::Reader<msg::StepAck> acks(p, ta, dds::QosProfile::command(16));
+  ClockBus bus(c.participant().domain_id());
+  auto [clock, peer, sim, acks] = std::tie(bus.clock, bus.peer, bus.sim, bus.acks);  // references
+  const auto sample = &ClockBus::sample;
   Spinner spin(c);
-  ASSERT_TRUE(wait_for([&] { return clock.matched() && peer.matched() && sim.matched() && acks.matched(); }, 10.0));
-  auto sample = [](int64_t t, const char* source, uint64_t v) {
-    msg::ComponentHealth h;
-    h.header = {t, source, 0};
-    h.rejected_inputs = v;
-    return h;
-  };
+  ASSERT_TRUE(wait_for([&] { return bus.matched(); }, 10.0));
   constexpr uint64_t kSteps = 50;
   for (uint64_t step = 0; step < kSteps; ++step) {
     const int64_t t = static_cast<int64_t>(step) * 100'000'000;
@@ -199,22 +211,11 @@ TEST(Runtime, TheStepsWhoseClockWasLeftOutAreTicksOfTheirOwn) {
   });
   c.every(0.3, [&] { timer_at.push_back(c.now_ns()); });
 
-  dds::Participant p(c.participant().domain_id());
-  dds::Topic<msg::Clock> tc(p, mpgc::topics::kClock);
-  dds::Topic<msg::StepAck> ta(p, mpgc::topics::kStepAck);
-  dds::Topic<msg::ComponentHealth> tp(p, "test/peer"), ts(p, "test/sim");
-  dds::Writer<msg::Clock> clock(p, tc, dds::QosProfile::command(16));
-  const auto q = dds::QosProfile::state().deterministic();
-  dds::Writer<msg::ComponentHealth> peer(p, tp, q), sim(p, ts, q);
-  dds::Reader<msg::StepAck> acks(p, ta, dds::QosProfile::command(16));
+  ClockBus bus(c.participant().domain_id());
+  auto [clock, peer, sim, acks] = std::tie(bus.clock, bus.peer, bus.sim, bus.acks);  // references
+  const auto sample = &ClockBus::sample;
   Spinner spin(c);
-  ASSERT_TRUE(wait_for([&] { return clock.matched() && peer.matched() && sim.matched() && acks.matched(); }, 10.0));
-  auto sample = [](int64_t t, const char* source, uint64_t v) {
-    msg::ComponentHealth h;
-    h.header = {t, source, 0};
-    h.rejected_inputs = v;
-    return h;
-  };
+  ASSERT_TRUE(wait_for([&] { return bus.matched(); }, 10.0));
   constexpr int64_t kStep = 100'000'000;
   std::vector<int64_t> due;
   for (uint64_t step = 0; step <= 10; ++step) {
