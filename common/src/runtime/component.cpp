@@ -185,9 +185,10 @@ void Component::on_clock(const msg::Clock& c) {
   }
   // Everything that arrived before this Clock is in the readers now; hand over what belongs here.
   for (auto& s : subs_) s->take(*this);
-  // The steps whose Clock the simulator left out (no timer was due) are ticks too, one per step_ns,
-  // so every sample is delivered on the clock it would have had with a Clock at every step.
-  if (started && c.step_ns > 0 && c.time_ns > last_ns && (c.time_ns - last_ns) % c.step_ns == 0 &&
+  // The steps whose Clock the simulator left out in lockstep (no timer was due) are ticks too, one
+  // per step_ns, so every sample is delivered on the clock it would have had with a Clock at every
+  // step. Off lockstep a gap is Clocks lost (a cut link): one tick, the missed timer periods skipped.
+  if (c.lockstep && started && c.step_ns > 0 && c.time_ns > last_ns && (c.time_ns - last_ns) % c.step_ns == 0 &&
       (c.time_ns - last_ns) / c.step_ns <= kMaxSkippedSteps)
     for (int64_t t = last_ns + c.step_ns; t < c.time_ns; t += c.step_ns) tick(t, c.time_ns);
   tick(c.time_ns, c.time_ns);

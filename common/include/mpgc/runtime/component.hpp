@@ -158,9 +158,9 @@ class Component {
       if (mode == Mode::All || wall_clock_stamp(h.stamp_ns)) return true;
       if (mode != Mode::Tick) return false;
       if (h.stamp_ns == tick_ns) return h.source == *clock_publisher;
-      // What belongs to a later tick of this Clock waits for it; a stamp beyond the Clock (a
-      // peer's clock ahead, or a bad one) is handed over at once, to be judged by the callback.
-      return h.stamp_ns < tick_ns || h.stamp_ns > clock_ns;
+      // What belongs to a later tick waits for it; a stamp beyond the Clock (a peer's clock ahead,
+      // or a bad one) is handed over at the Clock's own tick, to be judged by the callback then.
+      return h.stamp_ns < tick_ns || tick_ns == clock_ns;
     }
   };
   template <class T, class = void>
